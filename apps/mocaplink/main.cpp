@@ -1,0 +1,27 @@
+// mocaplink — motion capture to MAVLink. main() builds the command tree; each subcommand's
+// implementation lives in its own cmd_*.cpp (see commands.hpp for exit codes).
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"mocaplink: motion capture (Vicon, OptiTrack, Qualisys, VRPN) to MAVLink vehicles"};
+  app.set_version_flag("--version", MOCAPLINK_VERSION);
+  app.require_subcommand(1);
+  mocaplink::app::ExitCode exit_code;
+  mocaplink::app::add_mavlink_commands(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 prints help/usage errors; bad command lines exit 1 (bad input), --help exits 0.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mocaplink: %s\n", e.what());
+    return 2;
+  }
+  return exit_code.value;
+}

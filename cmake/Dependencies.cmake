@@ -1,0 +1,35 @@
+# Every dependency comes from a Debian package (scripts/setup installs them). Nothing is downloaded.
+find_package(Threads REQUIRED)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
+find_package(GeographicLib REQUIRED)
+if(NOT TARGET GeographicLib::GeographicLib)
+  add_library(GeographicLib::GeographicLib INTERFACE IMPORTED)
+  set_target_properties(GeographicLib::GeographicLib PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${GeographicLib_INCLUDE_DIRS}"
+    INTERFACE_LINK_LIBRARIES "${GeographicLib_LIBRARIES}")
+endif()
+find_package(tomlplusplus 3 REQUIRED)
+find_package(fmt REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(OpenSSL REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
+
+# Standalone Asio is header-only and ships no CMake package.
+find_path(ASIO_INCLUDE_DIR asio.hpp REQUIRED)
+add_library(mocaplink_asio INTERFACE)
+target_include_directories(mocaplink_asio SYSTEM INTERFACE ${ASIO_INCLUDE_DIR})
+target_compile_definitions(mocaplink_asio INTERFACE ASIO_STANDALONE ASIO_NO_DEPRECATED)
+target_link_libraries(mocaplink_asio INTERFACE Threads::Threads)
+add_library(mocaplink::asio ALIAS mocaplink_asio)
+
+if(BUILD_TESTING)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()
+if(MOCAPLINK_BENCH)
+  find_package(benchmark REQUIRED)
+endif()
