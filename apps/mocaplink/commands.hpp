@@ -12,6 +12,13 @@ struct ExitCode {
   int value = 0;
 };
 
+/// `mavlink encode|decode|listen` (cmd_mavlink.cpp).
 void add_mavlink_commands(CLI::App& app, ExitCode& exit_code);
+/// `bodies`, `record` (cmd_station.cpp).
+void add_station_commands(CLI::App& app, ExitCode& exit_code);
+/// `serve` (cmd_serve.cpp).
+void add_serve_commands(CLI::App& app, ExitCode& exit_code);
+/// `check` (cmd_check.cpp); `run` joins it with issue 5.
+void add_config_commands(CLI::App& app, ExitCode& exit_code);
 
 }  // namespace mocaplink::app
