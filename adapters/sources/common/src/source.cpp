@@ -1,0 +1,1 @@
+#include "mocaplink/sources/source.hpp"
