@@ -1,0 +1,43 @@
+// `sim://` as a Source: a thread that emits SimWorld frames in real time at rate_hz.
+#pragma once
+
+#include <condition_variable>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "mocaplink/sources/sim_world.hpp"
+#include "mocaplink/sources/source.hpp"
+
+namespace mocaplink::sources {
+
+/// Emits frame n at host time start + (n − 1)/rate_hz (sleep_until, so no drift accumulates; a
+/// late thread catches up without skipping numbers). Dropped frames (config.drop) are skipped, so
+/// the consumer sees gaps in frame numbers exactly as with a real system. State: `connected` on
+/// start, `finished` after config.frames frame numbers (when non-zero).
+/// Thread-safety: start/stop from one controlling thread; callbacks run on the source's thread.
+class SimSource final : public Source {
+ public:
+  /// `config` must pass validate_sim_config. `url` is shown by url().
+  SimSource(SimConfig config, std::string url);
+  ~SimSource() override;
+
+  void start(FrameSink on_frame, StateSink on_state) override;
+  void stop() override;
+  [[nodiscard]] std::string url() const override { return url_; }
+  [[nodiscard]] const SourceCounters& counters() const override { return counters_; }
+  [[nodiscard]] const SimWorld& world() const { return world_; }
+
+ private:
+  void run(FrameSink on_frame, StateSink on_state);
+
+  SimWorld world_;
+  std::string url_;
+  SourceCounters counters_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;  // guarded by mutex_
+  std::thread thread_;
+};
+
+}  // namespace mocaplink::sources

@@ -1,0 +1,63 @@
+#include "mocaplink/sources/sim_source.hpp"
+
+#include <chrono>
+#include <utility>
+
+namespace mocaplink::sources {
+namespace {
+
+core::HostTime host_now() {
+  return core::host_time_from_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                     std::chrono::steady_clock::now().time_since_epoch())
+                                     .count());
+}
+
+}  // namespace
+
+SimSource::SimSource(SimConfig config, std::string url)
+    : world_(std::move(config)), url_(std::move(url)) {}
+
+SimSource::~SimSource() {
+  stop();
+}
+
+void SimSource::start(FrameSink on_frame, StateSink on_state) {
+  thread_ = std::thread(
+      [this, frame_sink = std::move(on_frame), state_sink = std::move(on_state)]() mutable {
+        run(std::move(frame_sink), std::move(state_sink));
+      });
+}
+
+void SimSource::stop() {
+  {
+    const std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void SimSource::run(FrameSink on_frame, StateSink on_state) {
+  const SimConfig& config = world_.config();
+  if (on_state)
+    on_state(SourceState::connected, "simulated, " + std::to_string(config.bodies) + " bodies at " +
+                                         std::to_string(config.rate_hz) + " Hz");
+  const auto start = std::chrono::steady_clock::now();
+  const std::chrono::duration<double> period(1.0 / config.rate_hz);
+  for (std::uint64_t n = 1; config.frames == 0 || n <= config.frames; ++n) {
+    const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                 period * static_cast<double>(n - 1));
+    {
+      std::unique_lock lock(mutex_);
+      if (wake_.wait_until(lock, due, [this] { return stopping_; })) return;
+    }
+    if (world_.dropped(n)) continue;
+    core::MocapFrame frame = world_.frame(n);
+    counters_.frames.fetch_add(1, std::memory_order_relaxed);
+    if (on_frame) on_frame(std::move(frame), host_now());
+  }
+  if (on_state)
+    on_state(SourceState::finished, "simulation reached frames=" + std::to_string(config.frames));
+}
+
+}  // namespace mocaplink::sources
