@@ -18,7 +18,9 @@ void add_mavlink_commands(CLI::App& app, ExitCode& exit_code);
 void add_station_commands(CLI::App& app, ExitCode& exit_code);
 /// `serve` (cmd_serve.cpp).
 void add_serve_commands(CLI::App& app, ExitCode& exit_code);
-/// `check` (cmd_check.cpp); `run` joins it with issue 5.
+/// `check` (cmd_check.cpp).
 void add_config_commands(CLI::App& app, ExitCode& exit_code);
+/// `run` (cmd_run.cpp).
+void add_run_commands(CLI::App& app, ExitCode& exit_code);
 
 }  // namespace mocaplink::app
