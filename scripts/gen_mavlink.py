@@ -39,6 +39,16 @@ CPP_TYPES = {
 }
 
 
+CPP_KEYWORDS = {"static", "default", "delete", "auto", "register", "return", "switch", "case",
+                "int", "char", "float", "double", "long", "short", "signed", "unsigned", "void",
+                "new", "this", "true", "false", "union", "struct", "class", "enum", "const",
+                "continue", "break", "do", "else", "for", "if", "while", "goto", "private",
+                "public", "protected", "virtual", "operator", "template", "typename", "using",
+                "namespace", "and", "or", "not", "xor", "bool", "export", "inline", "throw",
+                "try", "catch", "friend", "explicit", "mutable", "volatile", "extern", "sizeof",
+                "typedef", "asm", "concept", "requires"}
+
+
 def crc_accumulate(data: bytes, crc: int) -> int:
     for b in data:
         tmp = b ^ (crc & 0xFF)
@@ -69,6 +79,8 @@ def enumerator(enum_name: str, value_name: str) -> str:
     base = base.lower()
     if base[0].isdigit():
         base = enum_name.split("_")[-1].lower() + "_" + base
+    if base in CPP_KEYWORDS:
+        base += "_"
     return base
 
 
@@ -290,6 +302,11 @@ inline void load(std::span<const std::uint8_t, N> p, std::size_t offset, T& valu
 /// The definition of the message held by `message`.
 [[nodiscard]] const MessageInfo& message_info(const Message& message) noexcept;
 
+/// A value-initialised message (all fields 0, HEARTBEAT.mavlink_version 3) of the given XML
+/// name ("HIL_GPS") or id; nullopt if unknown.
+[[nodiscard]] std::optional<Message> make_message(std::string_view name) noexcept;
+[[nodiscard]] std::optional<Message> make_message(std::uint32_t msgid) noexcept;
+
 /// Decodes a payload of message `msgid` as received (`payload.size()` = the frame's len): bytes
 /// beyond the message's kMaxLength are ignored (newer dialect), missing bytes read as zero
 /// (truncation, MAVLink 1 extensions). nullopt if `msgid` is unknown. Does not check a CRC.
@@ -361,7 +378,22 @@ const MessageInfo& message_info(const Message& message) noexcept {
   return kInfos[message.index()];
 }
 
-std::optional<Message> unpack_message(std::uint32_t msgid,
+""")
+    o.append("std::optional<Message> make_message(std::string_view name) noexcept {")
+    for m in model:
+        o.append(f"  if (name == {m['cls']}::kName) return {m['cls']}{{}};")
+    o.append("  return std::nullopt;")
+    o.append("}")
+    o.append("")
+    o.append("std::optional<Message> make_message(std::uint32_t msgid) noexcept {")
+    o.append("  switch (msgid) {")
+    for m in model:
+        o.append(f"    case {m['cls']}::kId: return {m['cls']}{{}};")
+    o.append("    default: return std::nullopt;")
+    o.append("  }")
+    o.append("}")
+    o.append("")
+    o.append("""std::optional<Message> unpack_message(std::uint32_t msgid,
                                       std::span<const std::uint8_t> payload) noexcept {
   switch (msgid) {""")
     for m in model:
@@ -380,7 +412,8 @@ def gen_enums(enums):
     o.append("""// MAVLink enums used by the messages of messages.hpp, as enum classes with to_string (the XML
 // name). Enumerators are the XML names without the enum prefix, lower case (MAV_FRAME_LOCAL_FRD ->
 // MavFrame::local_frd; a name starting with a digit keeps the prefix's last word:
-// GPS_FIX_TYPE_3D_FIX -> GpsFixType::type_3d_fix). Bitmask enums (…_FLAG, …_SENSOR) list single
+// GPS_FIX_TYPE_3D_FIX -> GpsFixType::type_3d_fix; C++ keywords get a trailing _:
+// GPS_FIX_TYPE_STATIC -> GpsFixType::static_). Bitmask enums (…_FLAG, …_SENSOR) list single
 // bits; combine their values with to_underlying. Message fields hold the raw integer.
 #pragma once
 

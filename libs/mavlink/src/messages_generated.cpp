@@ -155,6 +155,104 @@ const MessageInfo& message_info(const Message& message) noexcept {
   return kInfos[message.index()];
 }
 
+std::optional<Message> make_message(std::string_view name) noexcept {
+  if (name == Heartbeat::kName) return Heartbeat{};
+  if (name == SysStatus::kName) return SysStatus{};
+  if (name == SystemTime::kName) return SystemTime{};
+  if (name == Ping::kName) return Ping{};
+  if (name == ParamRequestRead::kName) return ParamRequestRead{};
+  if (name == ParamValue::kName) return ParamValue{};
+  if (name == ParamSet::kName) return ParamSet{};
+  if (name == GpsRawInt::kName) return GpsRawInt{};
+  if (name == Attitude::kName) return Attitude{};
+  if (name == AttitudeQuaternion::kName) return AttitudeQuaternion{};
+  if (name == LocalPositionNed::kName) return LocalPositionNed{};
+  if (name == GlobalPositionInt::kName) return GlobalPositionInt{};
+  if (name == SetGpsGlobalOrigin::kName) return SetGpsGlobalOrigin{};
+  if (name == GpsGlobalOrigin::kName) return GpsGlobalOrigin{};
+  if (name == CommandLong::kName) return CommandLong{};
+  if (name == CommandAck::kName) return CommandAck{};
+  if (name == GlobalVisionPositionEstimate::kName) return GlobalVisionPositionEstimate{};
+  if (name == VisionPositionEstimate::kName) return VisionPositionEstimate{};
+  if (name == VisionSpeedEstimate::kName) return VisionSpeedEstimate{};
+  if (name == Timesync::kName) return Timesync{};
+  if (name == HilGps::kName) return HilGps{};
+  if (name == AttPosMocap::kName) return AttPosMocap{};
+  if (name == EstimatorStatus::kName) return EstimatorStatus{};
+  if (name == GpsInput::kName) return GpsInput{};
+  if (name == HomePosition::kName) return HomePosition{};
+  if (name == ExtendedSysState::kName) return ExtendedSysState{};
+  if (name == Statustext::kName) return Statustext{};
+  if (name == SetupSigning::kName) return SetupSigning{};
+  if (name == Odometry::kName) return Odometry{};
+  return std::nullopt;
+}
+
+std::optional<Message> make_message(std::uint32_t msgid) noexcept {
+  switch (msgid) {
+    case Heartbeat::kId:
+      return Heartbeat{};
+    case SysStatus::kId:
+      return SysStatus{};
+    case SystemTime::kId:
+      return SystemTime{};
+    case Ping::kId:
+      return Ping{};
+    case ParamRequestRead::kId:
+      return ParamRequestRead{};
+    case ParamValue::kId:
+      return ParamValue{};
+    case ParamSet::kId:
+      return ParamSet{};
+    case GpsRawInt::kId:
+      return GpsRawInt{};
+    case Attitude::kId:
+      return Attitude{};
+    case AttitudeQuaternion::kId:
+      return AttitudeQuaternion{};
+    case LocalPositionNed::kId:
+      return LocalPositionNed{};
+    case GlobalPositionInt::kId:
+      return GlobalPositionInt{};
+    case SetGpsGlobalOrigin::kId:
+      return SetGpsGlobalOrigin{};
+    case GpsGlobalOrigin::kId:
+      return GpsGlobalOrigin{};
+    case CommandLong::kId:
+      return CommandLong{};
+    case CommandAck::kId:
+      return CommandAck{};
+    case GlobalVisionPositionEstimate::kId:
+      return GlobalVisionPositionEstimate{};
+    case VisionPositionEstimate::kId:
+      return VisionPositionEstimate{};
+    case VisionSpeedEstimate::kId:
+      return VisionSpeedEstimate{};
+    case Timesync::kId:
+      return Timesync{};
+    case HilGps::kId:
+      return HilGps{};
+    case AttPosMocap::kId:
+      return AttPosMocap{};
+    case EstimatorStatus::kId:
+      return EstimatorStatus{};
+    case GpsInput::kId:
+      return GpsInput{};
+    case HomePosition::kId:
+      return HomePosition{};
+    case ExtendedSysState::kId:
+      return ExtendedSysState{};
+    case Statustext::kId:
+      return Statustext{};
+    case SetupSigning::kId:
+      return SetupSigning{};
+    case Odometry::kId:
+      return Odometry{};
+    default:
+      return std::nullopt;
+  }
+}
+
 std::optional<Message> unpack_message(std::uint32_t msgid,
                                       std::span<const std::uint8_t> payload) noexcept {
   switch (msgid) {

@@ -3,7 +3,8 @@
 // MAVLink enums used by the messages of messages.hpp, as enum classes with to_string (the XML
 // name). Enumerators are the XML names without the enum prefix, lower case (MAV_FRAME_LOCAL_FRD ->
 // MavFrame::local_frd; a name starting with a digit keeps the prefix's last word:
-// GPS_FIX_TYPE_3D_FIX -> GpsFixType::type_3d_fix). Bitmask enums (…_FLAG, …_SENSOR) list single
+// GPS_FIX_TYPE_3D_FIX -> GpsFixType::type_3d_fix; C++ keywords get a trailing _:
+// GPS_FIX_TYPE_STATIC -> GpsFixType::static_). Bitmask enums (…_FLAG, …_SENSOR) list single
 // bits; combine their values with to_underlying. Message fields hold the raw integer.
 #pragma once
 
@@ -75,7 +76,7 @@ enum class GpsFixType : std::uint32_t {
   dgps = 4u,
   rtk_float = 5u,
   rtk_fixed = 6u,
-  static = 7u,
+  static_ = 7u,
   ppp = 8u,
 };
 
@@ -96,7 +97,7 @@ enum class GpsFixType : std::uint32_t {
       return "GPS_FIX_TYPE_RTK_FLOAT";
     case GpsFixType::rtk_fixed:
       return "GPS_FIX_TYPE_RTK_FIXED";
-    case GpsFixType::static:
+    case GpsFixType::static_:
       return "GPS_FIX_TYPE_STATIC";
     case GpsFixType::ppp:
       return "GPS_FIX_TYPE_PPP";

@@ -2128,6 +2128,11 @@ inline constexpr std::size_t kLargestPayload = 233;
 /// The definition of the message held by `message`.
 [[nodiscard]] const MessageInfo& message_info(const Message& message) noexcept;
 
+/// A value-initialised message (all fields 0, HEARTBEAT.mavlink_version 3) of the given XML
+/// name ("HIL_GPS") or id; nullopt if unknown.
+[[nodiscard]] std::optional<Message> make_message(std::string_view name) noexcept;
+[[nodiscard]] std::optional<Message> make_message(std::uint32_t msgid) noexcept;
+
 /// Decodes a payload of message `msgid` as received (`payload.size()` = the frame's len): bytes
 /// beyond the message's kMaxLength are ignored (newer dialect), missing bytes read as zero
 /// (truncation, MAVLink 1 extensions). nullopt if `msgid` is unknown. Does not check a CRC.
