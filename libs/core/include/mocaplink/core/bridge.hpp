@@ -1,0 +1,200 @@
+// Bridge: the whole core as one step function of timestamped inputs (DESIGN.md "Data flow").
+//
+//   Bridge bridge = *Bridge::make(config, start_time);
+//   out = bridge.on_frame(frame, received);                  // mocap frame → poses to send
+//   out = bridge.on_vehicle_message(i, message, received);   // vehicle i said something
+//   out = bridge.on_tick(now);                               // heartbeats, origin, link states
+//   for (auto& m : out.messages) link[m.vehicle].send(m.frame.bytes());
+//   for (auto& e : out.events) log(e);                       // rate-limit in the adapter
+//   snapshot = bridge.snapshot(now);                         // for the dashboard
+//
+// It owns the Station (source figures), one Tracker per distinct (body, body axes), one Sender and
+// one VehicleState per vehicle, and the CaptureTimeMapper (sender_clock.hpp). No sockets, threads,
+// clocks, files or logs: the adapter calls it from one thread (or under one mutex), passing host
+// times from one steady clock that never goes backwards, and sends what it returns. Call on_tick
+// about every 100 ms (heartbeat and origin cadence is exact to the tick period).
+//
+// Per frame: every tracker gets its body's sample (on_sample), or on_missing when the body is not
+// in the frame; then each enabled vehicle's Sender sees its body's estimate. Vehicles whose body
+// is never seen send nothing but heartbeats (and GPS fix 0 only once the body was seen).
+// Thread-safety: not thread-safe; snapshot() returns an independent copy.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "mocaplink/core/axis_mapping.hpp"
+#include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/geodesy.hpp"
+#include "mocaplink/core/message_builders.hpp"
+#include "mocaplink/core/mocap_frame.hpp"
+#include "mocaplink/core/profile.hpp"
+#include "mocaplink/core/sender.hpp"
+#include "mocaplink/core/sender_clock.hpp"
+#include "mocaplink/core/station.hpp"
+#include "mocaplink/core/time.hpp"
+#include "mocaplink/core/tracker.hpp"
+#include "mocaplink/core/vehicle_state.hpp"
+
+namespace mocaplink::core {
+
+/// One vehicle (the core's view of a config [[vehicle]]; the app maps config → this).
+struct VehicleSpec {
+  std::string name;  ///< unique, for events and the dashboard
+  std::string body;  ///< rigid-body name in the mocap frames
+  std::uint8_t system_id = 1;
+  std::uint8_t component_id = kVisionComponentId;
+  Profile profile = Profile::px4;
+  std::vector<MessageKind> messages;  ///< profile custom only
+  double rate_hz = 50.0;              ///< (0, kMaxSenderRateHz]
+  std::optional<std::array<std::uint8_t, 32>> signing_key;
+  std::uint8_t signing_link_id = 0;
+  BodyAxisMapping body_axes;  ///< which rigid-body axes are FRD
+  bool enabled = true;        ///< false: tracked and shown, nothing sent
+};
+
+struct BridgeConfig {
+  WorldAxisMapping world;  ///< mocap world → NED
+  /// Geodetic origin of the mocap frame (altitude AMSL, used as is: docs/messages.md "Altitude").
+  /// Required when a vehicle's messages need it (HIL_GPS, GPS_INPUT).
+  std::optional<GeodeticPosition> origin;
+  std::vector<VehicleSpec> vehicles;
+  TrackerConfig tracking;
+  StationConfig station;
+  GpsOptions gps;
+  AgreementThresholds agreement;
+  CaptureTimeMapper::Config capture_time;
+  /// Send our own TIMESYNC requests (1 Hz) to measure RTT and offset (diagnostics only).
+  bool timesync_requests = true;
+};
+
+/// Why make() refused a config (the config library normally catches these first).
+struct BridgeConfigError {
+  std::string field;  ///< "vehicles[1].rate_hz", "origin", ...
+  std::string message;
+};
+
+enum class BridgeEventKind : std::uint8_t {
+  body_tracking,  ///< a body (re)gained tracking (text: after how long / reset)
+  body_lost,      ///< a body went LOST
+  body_reset,     ///< a body's filter was re-initialised (reset_counter incremented)
+  vehicle_link,   ///< a vehicle's link state changed (alive / silent)
+  origin_state,   ///< a vehicle's origin state changed (confirmed / conflict / sending)
+  agreement,      ///< a vehicle's agreement verdict changed
+};
+[[nodiscard]] std::string_view to_string(BridgeEventKind kind);
+
+/// Something the operator should know; the adapter logs it (rate-limited) and shows it.
+struct BridgeEvent {
+  BridgeEventKind kind = BridgeEventKind::body_tracking;
+  HostTime time{};
+  std::optional<std::size_t> vehicle;  ///< vehicle index, when about a vehicle
+  std::string subject;                 ///< body or vehicle name
+  std::string text;                    ///< one line, human-readable
+};
+
+/// What one step produced.
+struct BridgeOutput {
+  std::vector<OutgoingMessage> messages;  ///< in send order; per vehicle, seq is consecutive
+  std::vector<BridgeEvent> events;
+};
+
+/// One tracked body on the dashboard.
+struct BodySnapshot {
+  std::string name;
+  BodyEstimate estimate;
+};
+
+/// One vehicle on the dashboard.
+struct VehicleStatus {
+  std::string name;
+  std::string body;
+  Profile profile = Profile::px4;
+  bool enabled = true;
+  SenderSnapshot sender;
+  VehicleSnapshot vehicle;
+};
+
+/// Immutable copy of everything the dashboard shows.
+struct BridgeSnapshot {
+  HostTime time{};
+  StationSnapshot station;
+  std::vector<BodySnapshot> bodies;
+  std::vector<VehicleStatus> vehicles;
+  std::optional<GeodeticPosition> origin;
+  std::optional<Duration> capture_offset;  ///< host − source clock offset (CaptureTimeMapper)
+};
+
+class Bridge {
+ public:
+  /// Validates `config` (rates, ids, custom lists, origin present when needed, unique vehicle
+  /// names) and builds the object graph. `start` is the host time the bridge starts
+  /// (LOCAL_POSITION_NED time_boot_ms counts from it).
+  [[nodiscard]] static std::variant<Bridge, BridgeConfigError> make(const BridgeConfig& config,
+                                                                    HostTime start);
+
+  /// A mocap frame received at `received`.
+  BridgeOutput on_frame(const MocapFrame& frame, HostTime received);
+  /// A decoded message from vehicle `vehicle`'s link (index into config.vehicles; out of range is
+  /// ignored).
+  BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
+                                  HostTime received);
+  /// Time passes: heartbeats, origin messages, TIMESYNC requests, link timeouts.
+  BridgeOutput on_tick(HostTime now);
+  /// The mocap source connected or went away (Station figures).
+  void on_source_connection(bool connected);
+  /// Wall clock: `unix_us` is the Unix time (µs) at host time `host`. Enables GPS_INPUT
+  /// time_week/time_week_ms and signing timestamps; call at start and whenever convenient (the
+  /// last call wins; GPS time then follows the steady clock, so it never jumps with NTP).
+  void set_wall_clock(HostTime host, std::int64_t unix_us);
+
+  // Runtime control (dashboard). Out-of-range vehicle index or value → false, nothing changes.
+  bool set_rate_hz(std::size_t vehicle, double rate_hz);
+  bool set_messages(std::size_t vehicle, const MessageSet& messages);
+  bool set_paused(std::size_t vehicle, bool paused);
+
+  [[nodiscard]] BridgeSnapshot snapshot(HostTime now) const;
+  [[nodiscard]] std::size_t vehicle_count() const { return vehicles_.size(); }
+  [[nodiscard]] const BridgeConfig& config() const { return config_; }
+
+ private:
+  struct Body {
+    std::string name;
+    BodyAxisMapping axes;
+    Tracker tracker;
+    TrackingState last_state = TrackingState::unseen;
+    std::uint8_t last_reset_counter = 0;
+    std::optional<HostTime> capture;  ///< host capture time of the latest estimate
+  };
+  struct Vehicle {
+    VehicleSpec spec;
+    std::size_t body = 0;  ///< index into bodies_
+    Sender sender;
+    VehicleState state;
+    bool sends_origin = false;
+  };
+  Bridge(const BridgeConfig& config, HostTime start);
+
+  void track(const MocapFrame& frame, HostTime capture, BridgeOutput& out);
+  [[nodiscard]] std::optional<GpsTime> gps_time(HostTime t) const;
+  [[nodiscard]] std::uint64_t signing_now_10us(HostTime t) const;
+  void vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,
+                      BridgeOutput& out) const;
+
+  BridgeConfig config_;
+  HostTime start_{};
+  Station station_;
+  CaptureTimeMapper capture_mapper_;
+  std::optional<LocalGeodeticFrame> geodetic_;
+  std::vector<Body> bodies_;
+  std::vector<Vehicle> vehicles_;
+  std::optional<Duration> unix_minus_host_;
+  std::optional<HostTime> last_time_;
+};
+
+}  // namespace mocaplink::core

@@ -1,0 +1,158 @@
+// Sender: one per vehicle. Turns the vehicle's BodyEstimate on every mocap frame into the profile's
+// messages at rate_hz, and emits the clock-driven ones (HEARTBEAT 1 Hz, SET_GPS_GLOBAL_ORIGIN ~1 Hz
+// while the origin is unconfirmed, our TIMESYNC requests 1 Hz) on ticks. Pure: time is passed in.
+//
+// Decimation (DESIGN.md: sending is driven by mocap frames, decimated per vehicle to rate_hz,
+// independent of the mocap rate): a send is due when the estimate's capture time (source clock)
+// reaches `next_due`; each send advances next_due by exactly 1/rate_hz, so the long-run average is
+// rate_hz with no drift whatever the mocap rate (50 Hz from 240 Hz frames: 500 sends in 10 s), and
+// each send goes out on the first frame at or after its slot (lowest latency). After a gap (no
+// frame for more than one period, or a source clock going backwards) the schedule restarts at the
+// next frame. A mocap rate below rate_hz sends on every frame.
+//
+// What is sent when due (autopilots.md §12 "Common": never a stale pose):
+//   pose messages (ODOMETRY, VISION_*, ATT_POS_MOCAP, LOCAL_POSITION_NED): only while
+//     BodyEstimate::pose_valid() (tracking, and this frame measured or a bridged outlier);
+//   GPS messages (HIL_GPS, GPS_INPUT): always, with fix_type 0 unless the body is tracking.
+// Paused: no pose/GPS messages; HEARTBEAT, TIMESYNC and the origin continue.
+//
+// Every frame is MAVLink 2 from (system_id, component_id), with this Sender's own sequence counter
+// (mavlink-wire.md §5) and signed when a key is configured (the signing timestamp comes from the
+// caller: 10 µs units since 2015-01-01 UTC, mavlink-wire.md §7). Not thread-safe (one owner).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/geodesy.hpp"
+#include "mocaplink/core/message_builders.hpp"
+#include "mocaplink/core/profile.hpp"
+#include "mocaplink/core/time.hpp"
+#include "mocaplink/mavlink/frame.hpp"
+#include "mocaplink/mavlink/messages.hpp"
+#include "mocaplink/mavlink/sequence.hpp"
+#include "mocaplink/mavlink/signing.hpp"
+
+namespace mocaplink::core {
+
+/// Largest accepted rate_hz (the config's bound).
+inline constexpr double kMaxSenderRateHz = 500.0;
+/// HEARTBEAT, SET_GPS_GLOBAL_ORIGIN and TIMESYNC request period (autopilots.md §3.9–§3.11).
+inline constexpr Duration kHeartbeatPeriod = std::chrono::seconds(1);
+inline constexpr Duration kOriginPeriod = std::chrono::seconds(1);
+inline constexpr Duration kTimesyncRequestPeriod = std::chrono::seconds(1);
+
+/// One message ready for a vehicle's link: the typed message (for logs, the dashboard and tests)
+/// and its encoded MAVLink 2 frame (what goes on the wire).
+struct OutgoingMessage {
+  std::size_t vehicle = 0;  ///< index of the vehicle (BridgeConfig::vehicles order)
+  HostTime time{};          ///< host time the message was produced for (input time)
+  mavlink::Message message;
+  mavlink::Frame frame;
+};
+
+/// Static settings of a Sender.
+struct SenderConfig {
+  std::size_t vehicle = 0;                         ///< index stamped into OutgoingMessage
+  std::uint8_t system_id = 1;                      ///< source sysid = the vehicle's (§9); 1..255
+  std::uint8_t component_id = kVisionComponentId;  ///< 2..255 (never 1, the autopilot)
+  MessageSet messages;                             ///< messages_for(profile, custom)
+  double rate_hz = 50.0;                           ///< (0, kMaxSenderRateHz]
+  std::optional<std::array<std::uint8_t, 32>> signing_key;  ///< MAVLink 2 signing secret
+  std::uint8_t signing_link_id = 0;
+};
+
+/// Inputs of one due send besides the estimate.
+struct SendContext {
+  HostTime now{};                              ///< host time of the input (receive time)
+  HostTime capture{};                          ///< host capture time of the estimate
+  HostTime start{};                            ///< bridge start (LOCAL_POSITION_NED time_boot_ms)
+  const LocalGeodeticFrame* origin = nullptr;  ///< required for HIL_GPS / GPS_INPUT
+  GpsOptions gps;
+  std::optional<GpsTime> gps_time;     ///< GPS time of `capture`, if the wall clock is known
+  std::uint64_t signing_now_10us = 0;  ///< signing timestamp source (0 = unknown)
+};
+
+/// Counters since creation.
+struct SenderCounters {
+  std::array<std::uint64_t, kMessageKindCount> sent{};  ///< per MessageKind
+  std::uint64_t heartbeats = 0;
+  std::uint64_t origins = 0;          ///< SET_GPS_GLOBAL_ORIGIN sent
+  std::uint64_t origin_requests = 0;  ///< REQUEST_MESSAGE(GPS_GLOBAL_ORIGIN) sent
+  std::uint64_t timesync_replies = 0;
+  std::uint64_t timesync_requests = 0;
+  std::uint64_t due_without_pose = 0;  ///< due slots skipped: pose not valid (lost, occluded)
+  std::uint64_t frames = 0;            ///< frames encoded in total
+  std::uint64_t bytes = 0;             ///< bytes encoded in total
+};
+
+/// Immutable view for the dashboard.
+struct SenderSnapshot {
+  std::uint8_t system_id = 0;
+  std::uint8_t component_id = 0;
+  MessageSet messages;
+  double rate_hz = 0.0;
+  bool paused = false;
+  bool signing = false;
+  std::optional<HostTime> last_pose_sent;  ///< host time of the latest due send with a message
+  SenderCounters counters;
+};
+
+class Sender {
+ public:
+  /// `config` must be valid (rate in range, component_id ≠ 0): a programming error aborts.
+  explicit Sender(const SenderConfig& config);
+
+  /// Called on every mocap frame with this vehicle's body estimate (after the Tracker ran). If a
+  /// send is due, appends the due messages to `out`.
+  void on_estimate(const BodyEstimate& estimate, const SendContext& context,
+                   std::vector<OutgoingMessage>& out);
+
+  /// Clock-driven messages at host time `now`: HEARTBEAT when due (the first tick sends at once);
+  /// SET_GPS_GLOBAL_ORIGIN to `origin_target` when `origin` is non-null and due (every 3rd one is
+  /// followed by a REQUEST_MESSAGE for GPS_GLOBAL_ORIGIN); a TIMESYNC request when
+  /// `timesync_request` is true and due.
+  void on_tick(HostTime now, std::uint64_t signing_now_10us, const GeodeticPosition* origin,
+               bool timesync_request, std::vector<OutgoingMessage>& out);
+
+  /// Encodes any message with this Sender's identity and sequence (TIMESYNC replies, tests).
+  void send(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
+            std::vector<OutgoingMessage>& out);
+
+  // Runtime changes (the dashboard's controls). Take effect at the next frame.
+  /// New rate in (0, kMaxSenderRateHz]; false (unchanged) otherwise. Restarts the schedule.
+  bool set_rate_hz(double rate_hz);
+  void set_messages(const MessageSet& messages) { config_.messages = messages; }
+  void set_paused(bool paused) { paused_ = paused; }
+
+  [[nodiscard]] const SenderConfig& config() const { return config_; }
+  [[nodiscard]] bool paused() const { return paused_; }
+  [[nodiscard]] SenderSnapshot snapshot() const;
+  /// The sequence number the next frame will carry.
+  [[nodiscard]] std::uint8_t next_seq() const { return sequence_.peek_seq(); }
+
+ private:
+  bool due(SourceTime capture);
+  void emit(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
+            std::vector<OutgoingMessage>& out);
+  void emit_kind(MessageKind kind, const BodyEstimate& estimate, const SendContext& context,
+                 std::vector<OutgoingMessage>& out);
+
+  SenderConfig config_;
+  Duration period_{};
+  bool paused_ = false;
+  mavlink::SequenceCounter sequence_;
+  std::optional<mavlink::OutgoingSigner> signer_;
+  std::optional<SourceTime> next_due_;
+  std::optional<HostTime> next_heartbeat_;
+  std::optional<HostTime> next_origin_;
+  std::optional<HostTime> next_timesync_;
+  std::optional<HostTime> last_pose_sent_;
+  SenderCounters counters_;
+};
+
+}  // namespace mocaplink::core

@@ -1,0 +1,192 @@
+// VehicleState: what one vehicle tells us back, from its decoded MAVLink messages with the host
+// time they arrived (DESIGN.md data flow; protocols/autopilots.md §3.9–§3.11, §10 rule 4). Pure.
+//
+//   heartbeat   type, autopilot, armed (base_mode bit 7), custom_mode, system_status, last seen;
+//               link state silent after kVehicleSilentAfter without one. Only heartbeats from the
+//               vehicle's system id that are not a GCS (type 6) or a non-autopilot component
+//               (autopilot 8 INVALID) count.
+//   TIMESYNC    requests (tc1 == 0) from anyone → answered at once (the caller sends the reply);
+//               responses to our own requests (ts1 equal to one we sent) → RTT and clock offset.
+//   origin      not_needed → (sending ⇄ mismatch) → confirmed | conflict. While sending, the
+//               Sender emits SET_GPS_GLOBAL_ORIGIN ~1 Hz. A GPS_GLOBAL_ORIGIN from the vehicle
+//               matching ours (|Δlat|, |Δlon| ≤ 1e-7 deg, |Δalt| ≤ 1 cm) confirms it: sending
+//               stops. A different one from an ArduPilot vehicle (autopilot 3) is a conflict: its
+//               EKF3 origin cannot change until reboot (§3.9), so sending stops and the operator is
+//               told. From any other autopilot a mismatch keeps us sending (PX4 accepts a new
+//               origin and answers again).
+//   agreement   the vehicle's own ATTITUDE yaw and LOCAL_POSITION_NED against the mocap estimate
+//               of its body at the message's arrival: yaw offset (deg, vehicle − mocap, wrapped to
+//               (−180, 180]) and position offset (m, 3-D distance); agrees when both are within
+//               the thresholds (default 10°, 0.3 m). Catches a wrong axis mapping, a body not
+//               created nose-forward, or another vehicle's poses, before take-off.
+// Not thread-safe (one owner); snapshot() is a copy.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/geodesy.hpp"
+#include "mocaplink/core/time.hpp"
+#include "mocaplink/mavlink/messages.hpp"
+
+namespace mocaplink::core {
+
+/// No heartbeat for this long → the vehicle's link state is silent.
+inline constexpr Duration kVehicleSilentAfter = std::chrono::seconds(3);
+/// MAV_AUTOPILOT_ARDUPILOTMEGA and MAV_AUTOPILOT_PX4.
+inline constexpr std::uint8_t kMavAutopilotArdupilot = 3;
+inline constexpr std::uint8_t kMavAutopilotPx4 = 12;
+/// MAV_MODE_FLAG_SAFETY_ARMED.
+inline constexpr std::uint8_t kMavModeFlagSafetyArmed = 128;
+
+/// A decoded message from a vehicle's link, with the sender's ids from the frame header.
+struct ReceivedMessage {
+  std::uint8_t sysid = 0;
+  std::uint8_t compid = 0;
+  mavlink::Message message;
+};
+
+enum class LinkState : std::uint8_t {
+  waiting,  ///< no heartbeat from the vehicle yet
+  alive,    ///< heartbeat within kVehicleSilentAfter
+  silent,   ///< heard before, nothing for kVehicleSilentAfter
+};
+[[nodiscard]] std::string_view to_string(LinkState state);
+
+enum class OriginState : std::uint8_t {
+  not_needed,  ///< this vehicle's profile does not set the origin (or none is configured)
+  sending,     ///< SET_GPS_GLOBAL_ORIGIN ~1 Hz until the vehicle reports ours
+  confirmed,   ///< the vehicle reported our origin; nothing more is sent
+  conflict,    ///< ArduPilot reported another origin: cannot change until reboot; stopped
+};
+[[nodiscard]] std::string_view to_string(OriginState state);
+
+enum class AgreementVerdict : std::uint8_t {
+  unknown,    ///< not both a vehicle estimate and a tracked mocap estimate yet
+  agrees,     ///< within both thresholds
+  disagrees,  ///< yaw or position beyond its threshold
+};
+[[nodiscard]] std::string_view to_string(AgreementVerdict verdict);
+
+/// Thresholds of the agreement check (documented defaults; docs/messages.md "Agreement").
+struct AgreementThresholds {
+  double max_yaw_offset_deg = 10.0;  ///< ArduPilot's own VisOdom pre-arm yaw check uses 10° (§7)
+  double max_position_offset_m = 0.3;
+};
+
+struct VehicleStateConfig {
+  std::uint8_t system_id = 1;              ///< the vehicle's sysid (messages from others ignored
+                                           ///< except TIMESYNC requests)
+  std::optional<GeodeticPosition> origin;  ///< set when the profile sets the origin
+  AgreementThresholds agreement;
+};
+
+/// Latest heartbeat of the vehicle.
+struct VehicleHeartbeat {
+  std::uint8_t compid = 0;
+  std::uint8_t type = 0;       ///< MAV_TYPE
+  std::uint8_t autopilot = 0;  ///< MAV_AUTOPILOT (3 ArduPilot, 12 PX4)
+  std::uint8_t base_mode = 0;
+  std::uint32_t custom_mode = 0;
+  std::uint8_t system_status = 0;
+  bool armed = false;  ///< base_mode & MAV_MODE_FLAG_SAFETY_ARMED
+};
+
+/// Clock relation from our TIMESYNC requests (autopilots.md §3.10).
+struct TimesyncEstimate {
+  std::int64_t offset_ns = 0;  ///< vehicle clock − host clock: tc1 − (ts1 + now) / 2
+  std::int64_t rtt_ns = 0;     ///< round trip of the latest answered request
+  std::uint64_t samples = 0;
+};
+
+struct Agreement {
+  AgreementVerdict verdict = AgreementVerdict::unknown;
+  std::optional<double> yaw_offset_deg;     ///< vehicle yaw − mocap yaw, (−180, 180]
+  std::optional<double> position_offset_m;  ///< |p_vehicle − p_mocap|, m
+  std::optional<HostTime> updated;
+};
+
+struct VehicleCounters {
+  std::uint64_t messages = 0;            ///< every message offered
+  std::uint64_t from_other_systems = 0;  ///< sysid ≠ the vehicle's (ignored, TIMESYNC aside)
+  std::uint64_t heartbeats = 0;
+  std::uint64_t timesync_requests = 0;   ///< answered
+  std::uint64_t timesync_responses = 0;  ///< to our requests
+  std::uint64_t origin_reports = 0;      ///< GPS_GLOBAL_ORIGIN received
+  std::uint64_t origin_mismatches = 0;
+};
+
+struct VehicleSnapshot {
+  LinkState link = LinkState::waiting;
+  std::optional<VehicleHeartbeat> heartbeat;
+  std::optional<HostTime> last_heartbeat;
+  std::optional<HostTime> last_message;
+  OriginState origin = OriginState::not_needed;
+  std::optional<GeodeticPosition> reported_origin;  ///< the vehicle's latest GPS_GLOBAL_ORIGIN
+  std::optional<TimesyncEstimate> timesync;
+  Agreement agreement;
+  VehicleCounters counters;
+};
+
+/// What a message asks of the caller.
+struct VehicleReaction {
+  std::optional<mavlink::Timesync> timesync_reply;  ///< send at once (built with our clock)
+  bool origin_changed = false;                      ///< origin state changed (event)
+  bool link_changed = false;                        ///< link state changed (event)
+  bool agreement_changed = false;                   ///< verdict changed (event)
+};
+
+class VehicleState {
+ public:
+  explicit VehicleState(VehicleStateConfig config);
+
+  /// One decoded message that arrived at `now`. `mocap` is the vehicle's body estimate at `now`
+  /// (nullptr if none); used by the agreement check only while it is tracking.
+  VehicleReaction on_message(const ReceivedMessage& message, HostTime now,
+                             const BodyEstimate* mocap);
+
+  /// Time passes: updates the link state (alive → silent). Returns true if it changed.
+  bool on_tick(HostTime now);
+
+  /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
+  void on_timesync_request_sent(std::int64_t ts1_ns);
+
+  /// Whether the Sender should keep sending SET_GPS_GLOBAL_ORIGIN.
+  [[nodiscard]] bool wants_origin() const { return origin_ == OriginState::sending; }
+  [[nodiscard]] OriginState origin_state() const { return origin_; }
+  [[nodiscard]] LinkState link_state() const { return link_; }
+  [[nodiscard]] const Agreement& agreement() const { return agreement_; }
+  [[nodiscard]] const VehicleStateConfig& config() const { return config_; }
+  [[nodiscard]] VehicleSnapshot snapshot() const;
+
+ private:
+  void on_heartbeat(const ReceivedMessage& message, HostTime now, VehicleReaction& reaction);
+  void on_timesync(const ReceivedMessage& message, HostTime now, VehicleReaction& reaction);
+  void on_origin(const mavlink::GpsGlobalOrigin& origin, VehicleReaction& reaction);
+  void update_agreement(HostTime now, VehicleReaction& reaction);
+
+  VehicleStateConfig config_;
+  LinkState link_ = LinkState::waiting;
+  OriginState origin_ = OriginState::not_needed;
+  std::optional<VehicleHeartbeat> heartbeat_;
+  std::optional<HostTime> last_heartbeat_;
+  std::optional<HostTime> last_message_;
+  std::optional<GeodeticPosition> reported_origin_;
+  std::optional<TimesyncEstimate> timesync_;
+  std::array<std::int64_t, 8> pending_requests_{};
+  std::size_t pending_next_ = 0;
+  // Agreement inputs: latest vehicle yaw / position with the mocap estimate seen with each.
+  std::optional<double> vehicle_yaw_offset_deg_;
+  std::optional<double> vehicle_position_offset_m_;
+  Agreement agreement_;
+  VehicleCounters counters_;
+};
+
+/// Wraps an angle in degrees to (−180, 180].
+[[nodiscard]] double wrap_deg_180(double degrees);
+
+}  // namespace mocaplink::core
