@@ -81,6 +81,8 @@ class RecordingReader {
   [[nodiscard]] RecordingStep finish();
 
   [[nodiscard]] const RecordingHeader& header() const { return header_; }
+  /// Whether the column line has been read (so the header comment, if any, too).
+  [[nodiscard]] bool header_complete() const { return seen_columns_; }
   /// Lines fed so far.
   [[nodiscard]] std::size_t line_number() const { return line_; }
 

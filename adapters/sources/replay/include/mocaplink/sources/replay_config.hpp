@@ -1,0 +1,53 @@
+// Configuration and pacing of `replay://file.csv[?speed=1&loop=0]` (DESIGN.md "Source URLs").
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "mocaplink/core/time.hpp"
+
+namespace mocaplink::sources {
+
+struct ReplayConfig {
+  /// The recording, as written after "replay://" (relative to the working directory, or absolute
+  /// with a third slash: replay:///data/run.csv). Taken literally: no percent-decoding, no '?'.
+  std::string path;
+  /// Playback speed: 1 = recorded timing, 2 = twice as fast, 0 = as fast as possible (tests,
+  /// batch processing); [0, 1000].
+  double speed = 1.0;
+  /// Start again at the end instead of finishing (frame numbers then repeat: a counter restart).
+  bool loop = false;
+};
+
+/// Key/value pairs of a URL query, in order (same alias as in sim_config.hpp).
+using UrlQuery = std::vector<std::pair<std::string, std::string>>;
+
+/// Builds a ReplayConfig from the path part and query of a `replay://` URL. Errors name the key:
+/// "replay://: unknown key 'sped' (known: speed, loop)". Pure; thread-safe.
+[[nodiscard]] std::variant<ReplayConfig, std::string> replay_config_from_url(std::string path,
+                                                                             const UrlQuery& query);
+
+/// When each recorded frame is due, as an offset from the start of playback: the first frame at
+/// 0, the others at (capture − first capture) / speed; at speed 0 everything is due at once.
+/// Pure: ReplaySource turns offsets into host deadlines. Not thread-safe (one per playback).
+class ReplaySchedule {
+ public:
+  /// `speed` as in ReplayConfig.
+  explicit ReplaySchedule(double speed) : speed_(speed) {}
+  /// Offset at which a frame captured at `capture` is due. Capture times must not decrease
+  /// within one pass (the recording reader guarantees it); an earlier one is due immediately.
+  [[nodiscard]] core::Duration due(core::SourceTime capture);
+  /// A new pass of a looped recording begins: its first frame is due right after the last one.
+  void next_pass();
+
+ private:
+  double speed_;
+  std::optional<core::SourceTime> first_capture_;
+  core::Duration pass_start_{0};
+  core::Duration last_due_{0};
+};
+
+}  // namespace mocaplink::sources

@@ -1,0 +1,53 @@
+// `replay://` as a Source: a thread that reads a recording line by line (memory bounded by one
+// frame) and delivers its frames with the recorded timing scaled by speed.
+#pragma once
+
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <variant>
+
+#include "mocaplink/sources/replay_config.hpp"
+#include "mocaplink/sources/source.hpp"
+
+namespace mocaplink::sources {
+
+/// States: `connected` when playback starts; `finished` at the end of the file (detail: how many
+/// frames); `disconnected` with "FILE:LINE: reason" if the file turns out malformed mid-way
+/// (the frames completed before the bad line have been delivered — not the one still open
+/// when it came; malformed is incremented) or cannot be read.
+/// Frames keep the recorded frame numbers and capture times (the source clock is the
+/// recording's); `received` is the host time of delivery.
+/// Thread-safety: start/stop from one controlling thread; callbacks run on the source's thread.
+class ReplaySource final : public Source {
+ public:
+  /// Opens the file and checks that it starts like a recording (header comment and column line),
+  /// so that a wrong path or a wrong file is reported before anything starts.
+  [[nodiscard]] static std::variant<std::unique_ptr<ReplaySource>, std::string> open(
+      ReplayConfig config, std::string url);
+  ~ReplaySource() override;
+
+  void start(FrameSink on_frame, StateSink on_state) override;
+  void stop() override;
+  [[nodiscard]] std::string url() const override { return url_; }
+  [[nodiscard]] const SourceCounters& counters() const override { return counters_; }
+
+ private:
+  ReplaySource(ReplayConfig config, std::string url);
+  void run(const FrameSink& on_frame, const StateSink& on_state);
+  /// Waits until `deadline` or stop(); true if stopping.
+  template <typename TimePoint>
+  bool wait_until(TimePoint deadline);
+
+  ReplayConfig config_;
+  std::string url_;
+  SourceCounters counters_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stopping_ = false;  // guarded by mutex_
+  std::thread thread_;
+};
+
+}  // namespace mocaplink::sources
