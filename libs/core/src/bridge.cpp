@@ -1,0 +1,288 @@
+// Bridge (bridge.hpp): the step function tying Station, Trackers, Senders and VehicleStates.
+#include "mocaplink/core/bridge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include "mocaplink/mavlink/signing.hpp"
+
+namespace mocaplink::core {
+namespace {
+
+std::string vehicle_field(std::size_t index, std::string_view key) {
+  return "vehicles[" + std::to_string(index) + "]." + std::string(key);
+}
+
+std::optional<BridgeConfigError> validate_vehicle(const BridgeConfig& config, std::size_t i) {
+  const VehicleSpec& v = config.vehicles[i];
+  if (v.name.empty()) return BridgeConfigError{vehicle_field(i, "name"), "must not be empty"};
+  if (v.body.empty()) return BridgeConfigError{vehicle_field(i, "body"), "must not be empty"};
+  if (v.system_id == 0) return BridgeConfigError{vehicle_field(i, "system_id"), "must be 1..255"};
+  if (v.component_id <= 1) {
+    return BridgeConfigError{vehicle_field(i, "component_id"),
+                             "must be 2..255 (1 is the autopilot itself)"};
+  }
+  if (!(std::isfinite(v.rate_hz) && v.rate_hz > 0.0 && v.rate_hz <= kMaxSenderRateHz)) {
+    return BridgeConfigError{vehicle_field(i, "rate_hz"), "must be in (0, 500]"};
+  }
+  if (v.profile == Profile::custom && v.messages.empty()) {
+    return BridgeConfigError{vehicle_field(i, "messages"), "profile custom needs messages"};
+  }
+  if (messages_for(v.profile, v.messages).needs_origin() && !config.origin) {
+    return BridgeConfigError{"origin", "vehicle '" + v.name + "' sends " +
+                                           std::string(to_string(v.profile)) +
+                                           " messages, which need [origin]"};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view to_string(BridgeEventKind kind) {
+  switch (kind) {
+    case BridgeEventKind::body_tracking:
+      return "body_tracking";
+    case BridgeEventKind::body_lost:
+      return "body_lost";
+    case BridgeEventKind::body_reset:
+      return "body_reset";
+    case BridgeEventKind::vehicle_link:
+      return "vehicle_link";
+    case BridgeEventKind::origin_state:
+      return "origin_state";
+    case BridgeEventKind::agreement:
+      return "agreement";
+  }
+  return "unknown";
+}
+
+std::variant<Bridge, BridgeConfigError> Bridge::make(const BridgeConfig& config, HostTime start) {
+  if (auto error = validate(config.tracking)) {
+    return BridgeConfigError{"tracking." + error->field, error->message};
+  }
+  if (config.origin && !LocalGeodeticFrame::make(*config.origin)) {
+    return BridgeConfigError{"origin", "latitude/longitude/altitude out of range or not finite"};
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < config.vehicles.size(); ++i) {
+    if (auto error = validate_vehicle(config, i)) return *error;
+    if (!names.insert(config.vehicles[i].name).second) {
+      return BridgeConfigError{vehicle_field(i, "name"),
+                               "duplicate vehicle name '" + config.vehicles[i].name + "'"};
+    }
+  }
+  return Bridge(config, start);
+}
+
+Bridge::Bridge(const BridgeConfig& config, HostTime start)
+    : config_(config),
+      start_(start),
+      station_(config.station),
+      capture_mapper_(config.capture_time) {
+  if (config.origin) geodetic_ = LocalGeodeticFrame::make(*config.origin);
+  for (std::size_t i = 0; i < config.vehicles.size(); ++i) {
+    const VehicleSpec& spec = config.vehicles[i];
+    // One Tracker per distinct (body, body axes): vehicles following the same body share it.
+    auto same = [&](const Body& b) {
+      return b.name == spec.body && b.axes.r_body_frd().isApprox(spec.body_axes.r_body_frd());
+    };
+    auto it = std::find_if(bodies_.begin(), bodies_.end(), same);
+    if (it == bodies_.end()) {
+      bodies_.push_back(Body{spec.body, spec.body_axes,
+                             Tracker(config.tracking, AxisMapping(config.world, spec.body_axes)),
+                             TrackingState::unseen, 0, std::nullopt});
+      it = std::prev(bodies_.end());
+    }
+    SenderConfig sc;
+    sc.vehicle = i;
+    sc.system_id = spec.system_id;
+    sc.component_id = spec.component_id;
+    sc.messages = messages_for(spec.profile, spec.messages);
+    sc.rate_hz = spec.rate_hz;
+    sc.signing_key = spec.signing_key;
+    sc.signing_link_id = spec.signing_link_id;
+    const bool origin = config.origin.has_value() && sends_origin(spec.profile, sc.messages);
+    VehicleStateConfig vc;
+    vc.system_id = spec.system_id;
+    if (origin) vc.origin = config.origin;
+    vc.agreement = config.agreement;
+    vehicles_.push_back(Vehicle{spec, static_cast<std::size_t>(it - bodies_.begin()), Sender(sc),
+                                VehicleState(vc), origin});
+  }
+}
+
+std::optional<GpsTime> Bridge::gps_time(HostTime t) const {
+  if (!unix_minus_host_) return std::nullopt;
+  const auto unix_us = std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch() +
+                                                                             *unix_minus_host_)
+                           .count();
+  return gps_time_from_unix_us(unix_us);
+}
+
+std::uint64_t Bridge::signing_now_10us(HostTime t) const {
+  if (!unix_minus_host_) return 0;
+  const auto unix_us = std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch() +
+                                                                             *unix_minus_host_)
+                           .count();
+  return mavlink::signing_timestamp_from_unix_us(unix_us);
+}
+
+void Bridge::set_wall_clock(HostTime host, std::int64_t unix_us) {
+  unix_minus_host_ = std::chrono::microseconds(unix_us) - host.time_since_epoch();
+}
+
+void Bridge::on_source_connection(bool connected) {
+  station_.on_connection(connected);
+}
+
+void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out) {
+  for (Body& body : bodies_) {
+    const auto sample = std::find_if(frame.bodies.begin(), frame.bodies.end(),
+                                     [&](const BodySample& s) { return s.name == body.name; });
+    if (sample != frame.bodies.end()) {
+      (void)body.tracker.on_sample(frame.capture_time, *sample);
+    } else {
+      (void)body.tracker.on_missing(frame.capture_time);
+    }
+    body.capture = capture;
+    const BodyEstimate& e = body.tracker.estimate();
+    if (e.reset_counter != body.last_reset_counter) {
+      body.last_reset_counter = e.reset_counter;
+      out.events.push_back(
+          {BridgeEventKind::body_reset, capture, std::nullopt, body.name,
+           "filter re-initialised, reset_counter " + std::to_string(e.reset_counter)});
+    }
+    if (e.state != body.last_state) {
+      const bool lost = e.state == TrackingState::lost;
+      if (lost || e.state == TrackingState::tracking) {
+        out.events.push_back({lost ? BridgeEventKind::body_lost : BridgeEventKind::body_tracking,
+                              capture, std::nullopt, body.name,
+                              lost ? "lost: no valid sample for loss_timeout_ms" : "tracking"});
+      }
+      body.last_state = e.state;
+    }
+  }
+}
+
+BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
+  BridgeOutput out;
+  station_.on_frame(frame, received);
+  const HostTime capture =
+      capture_mapper_.on_frame(frame.capture_time, received, frame.source_latency);
+  track(frame, capture, out);
+  SendContext context;
+  context.now = received;
+  context.capture = capture;
+  context.start = start_;
+  context.origin = geodetic_ ? &*geodetic_ : nullptr;
+  context.gps = config_.gps;
+  context.gps_time = gps_time(capture);
+  context.signing_now_10us = signing_now_10us(received);
+  for (Vehicle& v : vehicles_) {
+    if (!v.spec.enabled) continue;
+    v.sender.on_estimate(bodies_[v.body].tracker.estimate(), context, out.messages);
+  }
+  last_time_ = received;
+  return out;
+}
+
+void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,
+                            BridgeOutput& out) const {
+  const Vehicle& v = vehicles_[index];
+  if (reaction.link_changed) {
+    out.events.push_back({BridgeEventKind::vehicle_link, now, index, v.spec.name,
+                          "link " + std::string(to_string(v.state.link_state()))});
+  }
+  if (reaction.origin_changed) {
+    std::string text = "origin " + std::string(to_string(v.state.origin_state()));
+    if (v.state.origin_state() == OriginState::conflict) {
+      text +=
+          ": ArduPilot already has a different EKF origin; reboot the vehicle or change "
+          "[origin] (nothing more is sent)";
+    }
+    out.events.push_back({BridgeEventKind::origin_state, now, index, v.spec.name, text});
+  }
+  if (reaction.agreement_changed) {
+    const Agreement& a = v.state.agreement();
+    std::string text = "estimate " + std::string(to_string(a.verdict));
+    if (a.yaw_offset_deg) text += ", yaw offset " + std::to_string(*a.yaw_offset_deg) + " deg";
+    if (a.position_offset_m) {
+      text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
+    }
+    out.events.push_back({BridgeEventKind::agreement, now, index, v.spec.name, text});
+  }
+}
+
+BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
+                                        HostTime received) {
+  BridgeOutput out;
+  if (vehicle >= vehicles_.size()) return out;
+  Vehicle& v = vehicles_[vehicle];
+  const VehicleReaction reaction =
+      v.state.on_message(message, received, &bodies_[v.body].tracker.estimate());
+  if (reaction.timesync_reply && v.spec.enabled) {
+    v.sender.send(*reaction.timesync_reply, received, signing_now_10us(received), out.messages);
+  }
+  vehicle_events(vehicle, reaction, received, out);
+  last_time_ = received;
+  return out;
+}
+
+BridgeOutput Bridge::on_tick(HostTime now) {
+  BridgeOutput out;
+  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+    Vehicle& v = vehicles_[i];
+    VehicleReaction reaction;
+    reaction.link_changed = v.state.on_tick(now);
+    vehicle_events(i, reaction, now, out);
+    if (!v.spec.enabled) continue;
+    const std::size_t first = out.messages.size();
+    const GeodeticPosition* origin =
+        v.sends_origin && v.state.wants_origin() ? &*config_.origin : nullptr;
+    v.sender.on_tick(now, signing_now_10us(now), origin, config_.timesync_requests, out.messages);
+    for (std::size_t k = first; k < out.messages.size(); ++k) {
+      const auto* ts = std::get_if<mavlink::Timesync>(&out.messages[k].message);
+      if (ts != nullptr && ts->tc1 == 0) v.state.on_timesync_request_sent(ts->ts1);
+    }
+  }
+  last_time_ = now;
+  return out;
+}
+
+bool Bridge::set_rate_hz(std::size_t vehicle, double rate_hz) {
+  if (vehicle >= vehicles_.size()) return false;
+  return vehicles_[vehicle].sender.set_rate_hz(rate_hz);
+}
+
+bool Bridge::set_messages(std::size_t vehicle, const MessageSet& messages) {
+  if (vehicle >= vehicles_.size()) return false;
+  if (messages.needs_origin() && !geodetic_) return false;
+  vehicles_[vehicle].sender.set_messages(messages);
+  return true;
+}
+
+bool Bridge::set_paused(std::size_t vehicle, bool paused) {
+  if (vehicle >= vehicles_.size()) return false;
+  vehicles_[vehicle].sender.set_paused(paused);
+  return true;
+}
+
+BridgeSnapshot Bridge::snapshot(HostTime now) const {
+  BridgeSnapshot s;
+  s.time = now;
+  s.station = station_.snapshot(now);
+  s.origin = config_.origin;
+  s.capture_offset = capture_mapper_.offset();
+  s.bodies.reserve(bodies_.size());
+  for (const Body& b : bodies_) s.bodies.push_back({b.name, b.tracker.estimate()});
+  s.vehicles.reserve(vehicles_.size());
+  for (const Vehicle& v : vehicles_) {
+    s.vehicles.push_back({v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled,
+                          v.sender.snapshot(), v.state.snapshot()});
+  }
+  return s;
+}
+
+}  // namespace mocaplink::core

@@ -1,0 +1,197 @@
+// Sender (sender.hpp): decimation, per-profile message emission, clock-driven messages.
+#include "mocaplink/core/sender.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace mocaplink::core {
+namespace {
+
+Duration period_of(double rate_hz) {
+  return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(1.0 / rate_hz));
+}
+
+bool valid_rate(double rate_hz) {
+  return std::isfinite(rate_hz) && rate_hz > 0.0 && rate_hz <= kMaxSenderRateHz;
+}
+
+std::uint32_t ms_since(HostTime start, HostTime t) {
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(t - start).count();
+  // time_boot_ms wraps after 49.7 days like an autopilot's boot clock.
+  return static_cast<std::uint32_t>(static_cast<std::uint64_t>(ms < 0 ? 0 : ms) & 0xFFFF'FFFFU);
+}
+
+std::int64_t ns_of(HostTime t) {
+  return t.time_since_epoch().count();
+}
+
+/// Next time of a periodic message: phase-stable (advance by whole periods), restarting after a
+/// gap of more than one period (a stalled caller gets one message, not a burst).
+bool periodic_due(std::optional<HostTime>& next, HostTime now, Duration period) {
+  if (!next) {
+    next = now + period;
+    return true;
+  }
+  if (now < *next) return false;
+  *next += period;
+  if (*next <= now) *next = now + period;
+  return true;
+}
+
+}  // namespace
+
+Sender::Sender(const SenderConfig& config)
+    : config_(config),
+      period_(period_of(valid_rate(config.rate_hz) ? config.rate_hz : 1.0)),
+      sequence_(config.system_id, config.component_id) {
+  if (!valid_rate(config.rate_hz) || config.component_id == 0 || config.system_id == 0) {
+    std::fprintf(stderr, "mocaplink::core::Sender: invalid SenderConfig (rate %g, ids %u/%u)\n",
+                 config.rate_hz, config.system_id, config.component_id);
+    std::abort();
+  }
+  if (config.signing_key) {
+    signer_.emplace(mavlink::SigningKey(*config.signing_key), config.signing_link_id);
+  }
+}
+
+bool Sender::set_rate_hz(double rate_hz) {
+  if (!valid_rate(rate_hz)) return false;
+  config_.rate_hz = rate_hz;
+  period_ = period_of(rate_hz);
+  next_due_.reset();
+  return true;
+}
+
+bool Sender::due(SourceTime capture) {
+  if (!next_due_ || capture < *next_due_ - period_) {
+    // First frame, or the source clock went backwards (restart): start the schedule here.
+    next_due_ = capture + period_;
+    return true;
+  }
+  if (capture < *next_due_) return false;
+  *next_due_ += period_;
+  // More than a whole period late (a gap in frames, or mocap slower than rate_hz): restart the
+  // phase at this frame rather than bursting to catch up.
+  if (*next_due_ <= capture) *next_due_ = capture + period_;
+  return true;
+}
+
+void Sender::on_estimate(const BodyEstimate& estimate, const SendContext& context,
+                         std::vector<OutgoingMessage>& out) {
+  if (estimate.state == TrackingState::unseen) return;  // nothing known yet: nothing to say
+  if (!due(estimate.capture_time)) return;
+  if (paused_) return;
+  const bool pose_valid = estimate.pose_valid();
+  bool any = false;
+  for (std::size_t i = 0; i < kMessageKindCount; ++i) {
+    const auto kind = static_cast<MessageKind>(i);
+    if (!config_.messages.contains(kind)) continue;
+    if (!is_gps(kind) && !pose_valid) continue;  // never a stale pose (§12 "Common")
+    if (is_gps(kind) && context.origin == nullptr) continue;
+    emit_kind(kind, estimate, context, out);
+    any = true;
+  }
+  if (any) {
+    last_pose_sent_ = context.now;
+  } else if (!pose_valid) {
+    ++counters_.due_without_pose;
+  }
+}
+
+void Sender::emit_kind(MessageKind kind, const BodyEstimate& estimate, const SendContext& context,
+                       std::vector<OutgoingMessage>& out) {
+  const std::uint64_t time_usec = host_time_usec(context.capture);
+  GpsContext gps{context.origin, context.gps, context.gps_time};
+  mavlink::Message message;
+  switch (kind) {
+    case MessageKind::odometry:
+      message = build_odometry(estimate, time_usec);
+      break;
+    case MessageKind::vision_position_estimate:
+      message = build_vision_position_estimate(estimate, time_usec);
+      break;
+    case MessageKind::vision_speed_estimate:
+      message = build_vision_speed_estimate(estimate, time_usec);
+      break;
+    case MessageKind::att_pos_mocap:
+      message = build_att_pos_mocap(estimate, time_usec);
+      break;
+    case MessageKind::hil_gps:
+      message = build_hil_gps(estimate, time_usec, gps);
+      break;
+    case MessageKind::gps_input:
+      message = build_gps_input(estimate, time_usec, gps);
+      break;
+    case MessageKind::local_position_ned:
+      message = build_local_position_ned(estimate, ms_since(context.start, context.capture));
+      break;
+  }
+  ++counters_.sent[static_cast<std::size_t>(kind)];
+  emit(message, context.now, context.signing_now_10us, out);
+}
+
+void Sender::on_tick(HostTime now, std::uint64_t signing_now_10us, const GeodeticPosition* origin,
+                     bool timesync_request, std::vector<OutgoingMessage>& out) {
+  if (periodic_due(next_heartbeat_, now, kHeartbeatPeriod)) {
+    ++counters_.heartbeats;
+    emit(build_heartbeat(), now, signing_now_10us, out);
+  }
+  if (origin != nullptr) {
+    if (periodic_due(next_origin_, now, kOriginPeriod)) {
+      ++counters_.origins;
+      emit(build_set_gps_global_origin(*origin, config_.system_id, host_time_usec(now)), now,
+           signing_now_10us, out);
+      // Every third unanswered SET_GPS_GLOBAL_ORIGIN, ask for GPS_GLOBAL_ORIGIN explicitly
+      // (§3.9: some firmware does not answer the SET itself).
+      if (counters_.origins % 3 == 0) {
+        ++counters_.origin_requests;
+        emit(build_request_gps_global_origin(config_.system_id, 1), now, signing_now_10us, out);
+      }
+    }
+  } else {
+    next_origin_.reset();
+  }
+  if (timesync_request && periodic_due(next_timesync_, now, kTimesyncRequestPeriod)) {
+    ++counters_.timesync_requests;
+    emit(build_timesync_request(ns_of(now), config_.system_id, 1), now, signing_now_10us, out);
+  }
+}
+
+void Sender::send(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
+                  std::vector<OutgoingMessage>& out) {
+  if (std::holds_alternative<mavlink::Timesync>(message)) ++counters_.timesync_replies;
+  emit(message, now, signing_now_10us, out);
+}
+
+void Sender::emit(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
+                  std::vector<OutgoingMessage>& out) {
+  OutgoingMessage& o = out.emplace_back();
+  o.vehicle = config_.vehicle;
+  o.time = now;
+  o.message = message;
+  const mavlink::FrameHeader header = sequence_.next();
+  if (signer_) {
+    const mavlink::SignParams sign = signer_->next(signing_now_10us);
+    o.frame = mavlink::encode(message, header, &sign);
+  } else {
+    o.frame = mavlink::encode(message, header);
+  }
+  ++counters_.frames;
+  counters_.bytes += o.frame.size();
+}
+
+SenderSnapshot Sender::snapshot() const {
+  SenderSnapshot s;
+  s.system_id = config_.system_id;
+  s.component_id = config_.component_id;
+  s.messages = config_.messages;
+  s.rate_hz = config_.rate_hz;
+  s.paused = paused_;
+  s.signing = signer_.has_value();
+  s.last_pose_sent = last_pose_sent_;
+  s.counters = counters_;
+  return s;
+}
+
+}  // namespace mocaplink::core

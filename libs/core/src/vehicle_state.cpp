@@ -1,0 +1,236 @@
+// VehicleState (vehicle_state.hpp): heartbeat, TIMESYNC, origin state machine, agreement check.
+#include "mocaplink/core/vehicle_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "mocaplink/core/message_builders.hpp"
+#include "mocaplink/core/quaternion.hpp"
+
+namespace mocaplink::core {
+namespace {
+
+constexpr std::uint8_t kMavTypeGcs = 6;
+/// Origin match tolerances (docs/messages.md "Origin"): 1e-7 deg is one degE7 unit; 1 cm is the
+/// resolution ArduPilot stores the origin altitude with (it converts mm → cm, §3.9).
+constexpr std::int64_t kOriginTolE7 = 1;
+constexpr std::int64_t kOriginTolMm = 10;
+
+std::int64_t alt_mm(double altitude_m) {
+  return std::llround(altitude_m * 1000.0);
+}
+
+}  // namespace
+
+std::string_view to_string(LinkState state) {
+  switch (state) {
+    case LinkState::waiting:
+      return "waiting";
+    case LinkState::alive:
+      return "alive";
+    case LinkState::silent:
+      return "silent";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(OriginState state) {
+  switch (state) {
+    case OriginState::not_needed:
+      return "not_needed";
+    case OriginState::sending:
+      return "sending";
+    case OriginState::confirmed:
+      return "confirmed";
+    case OriginState::conflict:
+      return "conflict";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(AgreementVerdict verdict) {
+  switch (verdict) {
+    case AgreementVerdict::unknown:
+      return "unknown";
+    case AgreementVerdict::agrees:
+      return "agrees";
+    case AgreementVerdict::disagrees:
+      return "disagrees";
+  }
+  return "unknown";
+}
+
+double wrap_deg_180(double degrees) {
+  double d = std::fmod(degrees, 360.0);  // (−360, 360)
+  if (d > 180.0) d -= 360.0;
+  if (d <= -180.0) d += 360.0;
+  return d;
+}
+
+VehicleState::VehicleState(VehicleStateConfig config) : config_(std::move(config)) {
+  origin_ = config_.origin ? OriginState::sending : OriginState::not_needed;
+}
+
+VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTime now,
+                                         const BodyEstimate* mocap) {
+  VehicleReaction reaction;
+  ++counters_.messages;
+  last_message_ = now;
+  if (std::holds_alternative<mavlink::Timesync>(message.message)) {
+    on_timesync(message, now, reaction);  // requests are answered whoever asks
+    return reaction;
+  }
+  if (message.sysid != config_.system_id) {
+    ++counters_.from_other_systems;
+    return reaction;
+  }
+  if (const auto* hb = std::get_if<mavlink::Heartbeat>(&message.message)) {
+    (void)hb;
+    on_heartbeat(message, now, reaction);
+  } else if (const auto* origin = std::get_if<mavlink::GpsGlobalOrigin>(&message.message)) {
+    on_origin(*origin, reaction);
+  } else if (const auto* att = std::get_if<mavlink::Attitude>(&message.message)) {
+    if (mocap != nullptr && mocap->state == TrackingState::tracking && std::isfinite(att->yaw)) {
+      const double mocap_yaw = euler_321_from_quaternion(mocap->q_ned_frd).yaw_rad;
+      const double diff_rad = static_cast<double>(att->yaw) - mocap_yaw;
+      vehicle_yaw_offset_deg_ = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
+      update_agreement(now, reaction);
+    }
+  } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
+    if (mocap != nullptr && mocap->state == TrackingState::tracking) {
+      const Eigen::Vector3d p(pos->x, pos->y, pos->z);
+      const double offset = (p - mocap->p_ned_m).norm();
+      if (std::isfinite(offset)) {
+        vehicle_position_offset_m_ = offset;
+        update_agreement(now, reaction);
+      }
+    }
+  }
+  return reaction;
+}
+
+void VehicleState::on_heartbeat(const ReceivedMessage& message, HostTime now,
+                                VehicleReaction& reaction) {
+  const auto& hb = std::get<mavlink::Heartbeat>(message.message);
+  // A GCS or a non-autopilot component sharing the vehicle's sysid is not the vehicle (§3.11).
+  if (hb.type == kMavTypeGcs || hb.autopilot == kMavAutopilotInvalid) return;
+  ++counters_.heartbeats;
+  VehicleHeartbeat v;
+  v.compid = message.compid;
+  v.type = hb.type;
+  v.autopilot = hb.autopilot;
+  v.base_mode = hb.base_mode;
+  v.custom_mode = hb.custom_mode;
+  v.system_status = hb.system_status;
+  v.armed = (hb.base_mode & kMavModeFlagSafetyArmed) != 0;
+  heartbeat_ = v;
+  last_heartbeat_ = now;
+  if (link_ != LinkState::alive) {
+    link_ = LinkState::alive;
+    reaction.link_changed = true;
+  }
+}
+
+void VehicleState::on_timesync(const ReceivedMessage& message, HostTime now,
+                               VehicleReaction& reaction) {
+  const auto& ts = std::get<mavlink::Timesync>(message.message);
+  if (ts.tc1 == 0) {
+    // A request (TIMESYNC v2): answer at once. Requests addressed to another system are not ours.
+    if (ts.target_system != 0 && ts.target_system != config_.system_id) return;
+    ++counters_.timesync_requests;
+    reaction.timesync_reply =
+        build_timesync_reply(ts, message.sysid, message.compid, now.time_since_epoch().count());
+    return;
+  }
+  // A response: ours only if ts1 is one of our pending requests.
+  const auto it = std::find(pending_requests_.begin(), pending_requests_.end(), ts.ts1);
+  if (ts.ts1 == 0 || it == pending_requests_.end()) return;
+  *it = 0;
+  ++counters_.timesync_responses;
+  const std::int64_t now_ns = now.time_since_epoch().count();
+  TimesyncEstimate e = timesync_.value_or(TimesyncEstimate{});
+  e.rtt_ns = now_ns - ts.ts1;
+  // offset = remote − local at the midpoint of the round trip (§3.10).
+  e.offset_ns = ts.tc1 - (ts.ts1 + (now_ns - ts.ts1) / 2);
+  ++e.samples;
+  timesync_ = e;
+}
+
+void VehicleState::on_timesync_request_sent(std::int64_t ts1_ns) {
+  pending_requests_[pending_next_] = ts1_ns;
+  pending_next_ = (pending_next_ + 1) % pending_requests_.size();
+}
+
+void VehicleState::on_origin(const mavlink::GpsGlobalOrigin& reported, VehicleReaction& reaction) {
+  ++counters_.origin_reports;
+  reported_origin_ = GeodeticPosition{reported.latitude * 1e-7, reported.longitude * 1e-7,
+                                      reported.altitude * 1e-3};
+  if (!config_.origin || origin_ == OriginState::not_needed) return;
+  const GeodeticPosition& ours = *config_.origin;
+  const bool match =
+      std::llabs(std::int64_t{reported.latitude} - deg_e7(ours.latitude_deg)) <= kOriginTolE7 &&
+      std::llabs(std::int64_t{reported.longitude} - deg_e7(ours.longitude_deg)) <= kOriginTolE7 &&
+      std::llabs(std::int64_t{reported.altitude} - alt_mm(ours.altitude_m)) <= kOriginTolMm;
+  OriginState next = origin_;
+  if (match) {
+    next = OriginState::confirmed;
+  } else {
+    ++counters_.origin_mismatches;
+    const bool ardupilot = heartbeat_ && heartbeat_->autopilot == kMavAutopilotArdupilot;
+    // ArduPilot's EKF3 origin is immutable until reboot (§3.9): stop and tell the operator.
+    // Others (PX4) take a new origin: keep sending ours.
+    next = ardupilot ? OriginState::conflict : OriginState::sending;
+  }
+  if (next != origin_) {
+    origin_ = next;
+    reaction.origin_changed = true;
+  }
+}
+
+void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
+  const AgreementThresholds& t = config_.agreement;
+  AgreementVerdict verdict = AgreementVerdict::unknown;
+  const bool yaw_bad =
+      vehicle_yaw_offset_deg_ && std::abs(*vehicle_yaw_offset_deg_) > t.max_yaw_offset_deg;
+  const bool pos_bad =
+      vehicle_position_offset_m_ && *vehicle_position_offset_m_ > t.max_position_offset_m;
+  if (yaw_bad || pos_bad) {
+    verdict = AgreementVerdict::disagrees;
+  } else if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_) {
+    verdict = AgreementVerdict::agrees;
+  }
+  agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
+  agreement_.position_offset_m = vehicle_position_offset_m_;
+  agreement_.updated = now;
+  if (verdict != agreement_.verdict) {
+    agreement_.verdict = verdict;
+    reaction.agreement_changed = true;
+  }
+}
+
+bool VehicleState::on_tick(HostTime now) {
+  if (link_ == LinkState::alive && last_heartbeat_ &&
+      now - *last_heartbeat_ > kVehicleSilentAfter) {
+    link_ = LinkState::silent;
+    return true;
+  }
+  return false;
+}
+
+VehicleSnapshot VehicleState::snapshot() const {
+  VehicleSnapshot s;
+  s.link = link_;
+  s.heartbeat = heartbeat_;
+  s.last_heartbeat = last_heartbeat_;
+  s.last_message = last_message_;
+  s.origin = origin_;
+  s.reported_origin = reported_origin_;
+  s.timesync = timesync_;
+  s.agreement = agreement_;
+  s.counters = counters_;
+  return s;
+}
+
+}  // namespace mocaplink::core

@@ -1,0 +1,65 @@
+// Profiles → message sets (DESIGN.md table, autopilots.md §12) and the name spellings.
+#include "mocaplink/core/profile.hpp"
+
+#include <gtest/gtest.h>
+
+namespace mocaplink::core {
+namespace {
+
+TEST(ProfileNames, RoundTripAndRejectOthers) {
+  for (Profile p : {Profile::px4, Profile::ardupilot, Profile::px4_gps, Profile::ardupilot_gps,
+                    Profile::classic, Profile::custom}) {
+    EXPECT_EQ(parse_profile(to_string(p)), p);
+  }
+  EXPECT_EQ(to_string(Profile::px4_gps), "px4-gps");
+  EXPECT_EQ(to_string(Profile::ardupilot_gps), "ardupilot-gps");
+  EXPECT_FALSE(parse_profile("PX4"));
+  EXPECT_FALSE(parse_profile("px4_gps"));
+  EXPECT_FALSE(parse_profile(""));
+  for (const char* name : {"odometry", "vision_position_estimate", "vision_speed_estimate",
+                           "att_pos_mocap", "hil_gps", "gps_input", "local_position_ned"}) {
+    const auto kind = parse_message_kind(name);
+    ASSERT_TRUE(kind) << name;
+    EXPECT_EQ(to_string(*kind), name);
+  }
+  EXPECT_FALSE(parse_message_kind("ODOMETRY"));
+}
+
+TEST(ProfileSets, DesignTable) {
+  EXPECT_EQ(messages_for(Profile::px4), MessageSet{MessageKind::odometry});
+  EXPECT_EQ(messages_for(Profile::ardupilot), MessageSet{MessageKind::odometry});
+  EXPECT_EQ(messages_for(Profile::px4_gps), MessageSet{MessageKind::hil_gps});
+  EXPECT_EQ(messages_for(Profile::ardupilot_gps), MessageSet{MessageKind::gps_input});
+  EXPECT_EQ(to_string(messages_for(Profile::classic)), "att_pos_mocap,hil_gps,local_position_ned");
+  const std::vector<MessageKind> custom{MessageKind::vision_speed_estimate,
+                                        MessageKind::vision_position_estimate,
+                                        MessageKind::vision_speed_estimate};
+  const MessageSet set = messages_for(Profile::custom, custom);
+  EXPECT_EQ(set.size(), 2U);
+  EXPECT_EQ(to_string(set), "vision_position_estimate,vision_speed_estimate");
+  EXPECT_TRUE(messages_for(Profile::px4, custom) == MessageSet{MessageKind::odometry});
+}
+
+TEST(ProfileSets, OriginAndGpsClassification) {
+  EXPECT_TRUE(sends_origin(Profile::px4, messages_for(Profile::px4)));
+  EXPECT_TRUE(sends_origin(Profile::ardupilot, messages_for(Profile::ardupilot)));
+  EXPECT_FALSE(sends_origin(Profile::px4_gps, messages_for(Profile::px4_gps)));
+  EXPECT_FALSE(sends_origin(Profile::ardupilot_gps, messages_for(Profile::ardupilot_gps)));
+  EXPECT_FALSE(sends_origin(Profile::classic, messages_for(Profile::classic)));
+  EXPECT_TRUE(sends_origin(Profile::custom, MessageSet{MessageKind::att_pos_mocap}));
+  EXPECT_FALSE(sends_origin(Profile::custom, MessageSet{MessageKind::local_position_ned}));
+  EXPECT_TRUE(messages_for(Profile::classic).needs_origin());
+  EXPECT_FALSE(messages_for(Profile::px4).needs_origin());
+  EXPECT_TRUE(is_gps(MessageKind::hil_gps));
+  EXPECT_TRUE(is_gps(MessageKind::gps_input));
+  EXPECT_FALSE(is_gps(MessageKind::odometry));
+  MessageSet s;
+  EXPECT_TRUE(s.empty());
+  s.insert(MessageKind::hil_gps);
+  s.erase(MessageKind::hil_gps);
+  EXPECT_TRUE(s.empty());
+  EXPECT_EQ(to_string(s), "");
+}
+
+}  // namespace
+}  // namespace mocaplink::core

@@ -1,0 +1,271 @@
+// Sender: decimation to rate_hz independent of the mocap rate, what is sent while tracked / lost,
+// heartbeat and origin cadence, sequence numbers, pause, runtime rate changes, signing.
+#include "mocaplink/core/sender.hpp"
+
+#include <cmath>
+#include <variant>
+
+#include <gtest/gtest.h>
+
+#include "mocaplink/mavlink/frame.hpp"
+
+namespace mocaplink::core {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::nanoseconds;
+using std::chrono::seconds;
+
+BodyEstimate tracked_at(SourceTime t) {
+  BodyEstimate e;
+  e.capture_time = t;
+  e.measurement_time = t;
+  e.state = TrackingState::tracking;
+  e.last_outcome = SampleOutcome::accepted;
+  return e;
+}
+
+/// Frame k of a mocap stream at rate_hz, in integer nanoseconds (as a source clock would give).
+SourceTime frame_time(std::int64_t k, double rate_hz) {
+  return SourceTime{nanoseconds(std::llround(static_cast<double>(k) * 1e9 / rate_hz))};
+}
+
+HostTime host(SourceTime t) {
+  return HostTime{t.time_since_epoch() + milliseconds(5)};
+}
+
+SenderConfig config(MessageSet messages, double rate_hz) {
+  SenderConfig c;
+  c.system_id = 1;
+  c.messages = messages;
+  c.rate_hz = rate_hz;
+  return c;
+}
+
+template <typename M>
+std::size_t count(const std::vector<OutgoingMessage>& out) {
+  std::size_t n = 0;
+  for (const auto& o : out) n += std::holds_alternative<M>(o.message) ? std::size_t{1} : 0;
+  return n;
+}
+
+std::size_t run_stream(Sender& sender, double mocap_hz, double seconds_of_data,
+                       std::vector<OutgoingMessage>& out) {
+  const auto frames = static_cast<std::int64_t>(std::llround(mocap_hz * seconds_of_data));
+  for (std::int64_t k = 0; k < frames; ++k) {
+    const SourceTime t = frame_time(k, mocap_hz);
+    SendContext ctx;
+    ctx.now = host(t);
+    ctx.capture = host(t);
+    sender.on_estimate(tracked_at(t), ctx, out);
+  }
+  return static_cast<std::size_t>(frames);
+}
+
+TEST(SenderDecimation, FiftyFromTwoFortyOverTenSeconds) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  run_stream(sender, 240.0, 10.0, out);
+  EXPECT_NEAR(static_cast<double>(count<mavlink::Odometry>(out)), 500.0, 1.0);
+  // Phase-stable: no two sends closer than one mocap period less than 1/50 s apart would be a
+  // burst; every interval is 4 or 5 frames (16.7 or 20.8 ms) around the 20 ms slot.
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    const auto gap = out[i].time - out[i - 1].time;
+    EXPECT_GE(gap, milliseconds(16)) << i;
+    EXPECT_LE(gap, milliseconds(21)) << i;
+  }
+}
+
+TEST(SenderDecimation, ThirtyFromHundred) {
+  Sender sender(config({MessageKind::odometry}, 30.0));
+  std::vector<OutgoingMessage> out;
+  run_stream(sender, 100.0, 10.0, out);
+  EXPECT_NEAR(static_cast<double>(count<mavlink::Odometry>(out)), 300.0, 1.0);
+}
+
+TEST(SenderDecimation, MocapSlowerThanRateSendsEveryFrame) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  const std::size_t frames = run_stream(sender, 30.0, 10.0, out);
+  EXPECT_EQ(count<mavlink::Odometry>(out), frames);
+}
+
+TEST(SenderDecimation, GapRestartsTheScheduleWithoutBurst) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  SendContext ctx;
+  sender.on_estimate(tracked_at(SourceTime{milliseconds(0)}), ctx, out);
+  // 1 s without frames, then frames every 5 ms: one send at once, the next 20 ms later.
+  for (int ms = 1000; ms <= 1040; ms += 5) {
+    sender.on_estimate(tracked_at(SourceTime{milliseconds(ms)}), ctx, out);
+  }
+  EXPECT_EQ(out.size(), 4U);  // t = 0, 1000, 1020, 1040
+}
+
+TEST(SenderDecimation, RuntimeRateChange) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  EXPECT_FALSE(sender.set_rate_hz(0.0));
+  EXPECT_FALSE(sender.set_rate_hz(501.0));
+  EXPECT_FALSE(sender.set_rate_hz(std::nan("")));
+  EXPECT_TRUE(sender.set_rate_hz(10.0));
+  run_stream(sender, 200.0, 5.0, out);
+  EXPECT_NEAR(static_cast<double>(out.size()), 50.0, 1.0);
+  EXPECT_EQ(sender.snapshot().rate_hz, 10.0);
+}
+
+TEST(SenderContent, VisionOnlyWhileTrackedGpsWithFixZeroWhenLost) {
+  const auto origin = LocalGeodeticFrame::make({47.0, 8.0, 400.0});
+  ASSERT_TRUE(origin);
+  Sender px4(config({MessageKind::odometry}, 50.0));
+  Sender gps(config({MessageKind::gps_input}, 50.0));
+  std::vector<OutgoingMessage> out_px4;
+  std::vector<OutgoingMessage> out_gps;
+  SendContext ctx;
+  ctx.origin = &*origin;
+  auto e = tracked_at(SourceTime{seconds(1)});
+  e.state = TrackingState::lost;
+  e.last_outcome = SampleOutcome::untracked;
+  px4.on_estimate(e, ctx, out_px4);
+  gps.on_estimate(e, ctx, out_gps);
+  EXPECT_TRUE(out_px4.empty());
+  ASSERT_EQ(out_gps.size(), 1U);
+  EXPECT_EQ(std::get<mavlink::GpsInput>(out_gps[0].message).fix_type, 0);
+  EXPECT_EQ(px4.snapshot().counters.due_without_pose, 1U);
+
+  // Tracking but occluded in this frame (prediction only): still no vision message.
+  e.capture_time += seconds(1);
+  e.state = TrackingState::tracking;
+  e.last_outcome = SampleOutcome::untracked;
+  px4.on_estimate(e, ctx, out_px4);
+  EXPECT_TRUE(out_px4.empty());
+
+  // Unseen bodies produce nothing at all.
+  BodyEstimate unseen;
+  unseen.capture_time = SourceTime{seconds(3)};
+  gps.on_estimate(unseen, ctx, out_gps);
+  EXPECT_EQ(out_gps.size(), 1U);
+}
+
+TEST(SenderContent, ClassicSendsThreeMessagesWithTimes) {
+  const auto origin = LocalGeodeticFrame::make({47.0, 8.0, 400.0});
+  ASSERT_TRUE(origin);
+  Sender sender(config(messages_for(Profile::classic), 10.0));
+  std::vector<OutgoingMessage> out;
+  SendContext ctx;
+  ctx.origin = &*origin;
+  ctx.start = HostTime{seconds(100)};
+  ctx.capture = HostTime{seconds(102) + milliseconds(345) + nanoseconds(678'900)};
+  ctx.now = ctx.capture + milliseconds(3);
+  sender.on_estimate(tracked_at(SourceTime{seconds(1)}), ctx, out);
+  ASSERT_EQ(out.size(), 3U);
+  // Enum order: ATT_POS_MOCAP, HIL_GPS, LOCAL_POSITION_NED.
+  EXPECT_EQ(std::get<mavlink::AttPosMocap>(out[0].message).time_usec, 102'345'678U);
+  EXPECT_EQ(std::get<mavlink::HilGps>(out[1].message).time_usec, 102'345'678U);
+  EXPECT_EQ(std::get<mavlink::LocalPositionNed>(out[2].message).time_boot_ms, 2345U);
+}
+
+TEST(SenderClock, HeartbeatAtOneHertz) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  for (int ms = 0; ms < 10'000; ms += 100)
+    sender.on_tick(HostTime{milliseconds(ms)}, 0, nullptr, false, out);
+  ASSERT_EQ(count<mavlink::Heartbeat>(out), 10U);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    EXPECT_EQ(out[i].time, HostTime{seconds(static_cast<int>(i))});
+  }
+  // Irregular ticks: never two heartbeats less than 1 s apart, never a burst after a stall.
+  out.clear();
+  Sender s2(config({MessageKind::odometry}, 50.0));
+  for (int ms : {0, 300, 900, 1000, 1001, 5000, 5100, 5999, 6000}) {
+    s2.on_tick(HostTime{milliseconds(ms)}, 0, nullptr, false, out);
+  }
+  ASSERT_EQ(out.size(), 4U);  // 0, 1000, 5000, 6000
+  EXPECT_EQ(out[2].time, HostTime{milliseconds(5000)});
+  EXPECT_EQ(out[3].time, HostTime{milliseconds(6000)});
+}
+
+TEST(SenderClock, OriginEverySecondWithRequestEveryThird) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  const GeodeticPosition origin{47.3977418, 8.5455938, 488.0};
+  std::vector<OutgoingMessage> out;
+  for (int ms = 0; ms < 3000; ms += 100)
+    sender.on_tick(HostTime{milliseconds(ms)}, 0, &origin, false, out);
+  EXPECT_EQ(count<mavlink::SetGpsGlobalOrigin>(out), 3U);
+  EXPECT_EQ(count<mavlink::CommandLong>(out), 1U);
+  const auto& set = std::get<mavlink::SetGpsGlobalOrigin>(out[1].message);
+  EXPECT_EQ(set.target_system, 1);
+  EXPECT_EQ(set.latitude, 473977418);
+  EXPECT_EQ(set.time_usec, 0U);  // host µs at t = 0
+}
+
+TEST(SenderClock, TimesyncRequests) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  sender.on_tick(HostTime{seconds(7)}, 0, nullptr, true, out);
+  ASSERT_EQ(count<mavlink::Timesync>(out), 1U);
+  const auto& ts = std::get<mavlink::Timesync>(out[1].message);
+  EXPECT_EQ(ts.tc1, 0);
+  EXPECT_EQ(ts.ts1, 7'000'000'000);
+  EXPECT_EQ(ts.target_system, 1);
+}
+
+TEST(SenderFrames, SequenceIsConsecutiveAndWraps) {
+  SenderConfig c = config({MessageKind::odometry}, 50.0);
+  c.system_id = 7;
+  c.component_id = 197;
+  Sender sender(c);
+  std::vector<OutgoingMessage> out;
+  for (int i = 0; i < 300; ++i) {
+    sender.send(build_heartbeat(), HostTime{}, 0, out);
+  }
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const auto b = out[i].frame.bytes();
+    EXPECT_EQ(b[4], static_cast<std::uint8_t>(i % 256)) << i;
+    EXPECT_EQ(b[5], 7);
+    EXPECT_EQ(b[6], 197);
+  }
+  EXPECT_EQ(sender.next_seq(), 300 % 256);
+}
+
+TEST(SenderFrames, PauseStopsPosesNotHeartbeats) {
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  sender.set_paused(true);
+  run_stream(sender, 100.0, 1.0, out);
+  EXPECT_TRUE(out.empty());
+  sender.on_tick(HostTime{}, 0, nullptr, false, out);
+  EXPECT_EQ(count<mavlink::Heartbeat>(out), 1U);
+  sender.set_paused(false);
+  sender.set_messages(MessageSet{MessageKind::vision_position_estimate});
+  SendContext ctx;
+  sender.on_estimate(tracked_at(SourceTime{seconds(5)}), ctx, out);
+  EXPECT_EQ(count<mavlink::VisionPositionEstimate>(out), 1U);
+}
+
+TEST(SenderFrames, SignedFramesVerifyWithTheKey) {
+  SenderConfig c = config({MessageKind::odometry}, 50.0);
+  std::array<std::uint8_t, 32> secret{};
+  for (std::size_t i = 0; i < secret.size(); ++i) secret[i] = static_cast<std::uint8_t>(i);
+  c.signing_key = secret;
+  c.signing_link_id = 4;
+  Sender sender(c);
+  std::vector<OutgoingMessage> out;
+  sender.send(build_heartbeat(), HostTime{}, 1000, out);
+  sender.send(build_heartbeat(), HostTime{}, 1000, out);
+  ASSERT_EQ(out.size(), 2U);
+  const mavlink::SigningKey key(secret);
+  for (const auto& o : out) {
+    const auto b = o.frame.bytes();
+    EXPECT_EQ(b[2] & 1, 1);  // incompat flag: signed
+    EXPECT_EQ(o.frame.size(), 12U + 9U + 13U);
+    EXPECT_TRUE(key.verify(b));
+    EXPECT_EQ(b[12 + 9], 4);  // link id
+  }
+  // Timestamps strictly increase even with the same "now" (mavlink-wire.md §7.3).
+  EXPECT_NE(out[0].frame.bytes()[22], out[1].frame.bytes()[22]);
+  EXPECT_TRUE(sender.snapshot().signing);
+}
+
+}  // namespace
+}  // namespace mocaplink::core
