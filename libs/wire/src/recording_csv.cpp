@@ -1,5 +1,6 @@
 #include "mocaplink/wire/recording_csv.hpp"
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -13,6 +14,12 @@ constexpr std::size_t kColumns = 11;
 constexpr std::array<std::string_view, kColumns> kColumnNames{
     "time_s", "frame", "body", "tracked", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz"};
 constexpr double kQuaternionNormTolerance = 1e-3;
+
+/// ASCII control characters (incl. NUL, CR, LF, DEL): never part of a body name.
+bool is_control(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u < 0x20 || u == 0x7f;
+}
 
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t");
@@ -94,9 +101,7 @@ void append_fixed6(std::string& out, double value) {
 std::string escape_name(std::string_view name) {
   std::string clean(name.substr(0, kMaxBodyNameBytes));
   if (clean.empty()) clean = "?";  // an empty field would not read back
-  for (char& c : clean) {
-    if (c == '\r' || c == '\n') c = '?';
-  }
+  std::replace_if(clean.begin(), clean.end(), is_control, '?');
   if (clean.find_first_of(",\"") == std::string::npos && trim(clean) == clean) return clean;
   std::string out = "\"";
   for (char c : clean) {
@@ -198,6 +203,9 @@ RecordingStep RecordingReader::feed_row(std::string_view line) {
   core::BodySample body;
   body.name = fields[2];
   if (body.name.empty()) return fail("column body: empty name");
+  if (std::any_of(body.name.begin(), body.name.end(), is_control)) {
+    return fail("column body: control character in name " + quoted(body.name));
+  }
   if (body.name.size() > kMaxBodyNameBytes) {
     return fail("column body: name longer than " + std::to_string(kMaxBodyNameBytes) + " bytes");
   }

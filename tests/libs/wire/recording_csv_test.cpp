@@ -118,6 +118,8 @@ TEST(RecordingCsv, RejectsBadInputWithTheLineNumber) {
       {"frame beyond 2^64", h + "0.0,18446744073709551616,A,0,,,,,,,\n", 3, "column frame"},
       {"tracked not 0/1", h + "0.0,1,A,yes,0,0,0,1,0,0,0\n", 3, "column tracked: 'yes'"},
       {"empty name", h + "0.0,1,,1,0,0,0,1,0,0,0\n", 3, "empty name"},
+      {"control character in name", h + "0.0,1,\"A\rB\",0,,,,,,,\n", 3, "control character"},
+      {"NUL in name", h + std::string("0.0,1,A\0B,0,,,,,,,\n", 19), 3, "control character"},
       {"zero quaternion", h + "0.0,1,A,1,0,0,0,0,0,0,0\n", 3, "quaternion norm"},
       {"duplicate body", h + "0.0,1,A,0,,,,,,,\n0.0,1,A,0,,,,,,,\n", 4, "twice"},
       {"time differs in frame", h + "0.0,1,A,0,,,,,,,\n0.1,1,B,0,,,,,,,\n", 4, "time_s"},

@@ -1,6 +1,8 @@
 #include "mocaplink/sources/sim_source.hpp"
 
+#include <array>
 #include <chrono>
+#include <cstdio>
 #include <utility>
 
 namespace mocaplink::sources {
@@ -39,9 +41,12 @@ void SimSource::stop() {
 
 void SimSource::run(FrameSink on_frame, StateSink on_state) {
   const SimConfig& config = world_.config();
-  if (on_state)
-    on_state(SourceState::connected, "simulated, " + std::to_string(config.bodies) + " bodies at " +
-                                         std::to_string(config.rate_hz) + " Hz");
+  if (on_state) {
+    std::array<char, 96> detail{};
+    std::snprintf(detail.data(), detail.size(), "simulated, %zu bodies at %g Hz", config.bodies,
+                  config.rate_hz);
+    on_state(SourceState::connected, detail.data());
+  }
   const auto start = std::chrono::steady_clock::now();
   const std::chrono::duration<double> period(1.0 / config.rate_hz);
   for (std::uint64_t n = 1; config.frames == 0 || n <= config.frames; ++n) {

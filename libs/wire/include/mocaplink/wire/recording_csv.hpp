@@ -22,6 +22,7 @@
 //   - every row has exactly 11 fields; frame is a decimal integer in [0, 2^64); tracked is 0 or 1;
 //     time_s and, in tracked rows, the pose are finite decimal numbers; the quaternion's norm must
 //     be within 1e-3 of 1 and is normalised;
+//   - a body name is 1..kMaxBodyNameBytes bytes without ASCII control characters;
 //   - within a frame, time_s is the same on every row and body names are unique; from frame to
 //     frame time_s never decreases (frame numbers may restart, as after a server restart);
 //   - bounds: a line has at most kMaxRecordingLineBytes bytes, a name kMaxBodyNameBytes, a frame
@@ -114,10 +115,10 @@ struct Recording {
                                                   std::optional<double> rate_hz);
 
 /// The rows of one frame, each ending in '\n'; time_s = capture_time − first_capture. Numbers have
-/// 6 decimals (1 µm, 1 µs). A name with ',' or '"' is quoted; '\r' and '\n' in a name become '?'
-/// (the format is line-based), an empty name is written '?' and names are cut to
-/// kMaxBodyNameBytes. A tracked body with a non-finite pose is written as untracked, so that every
-/// written file reads back.
+/// 6 decimals (1 µm, 1 µs). A name with ',' or '"' is quoted; control characters in a name
+/// (CR, LF, NUL, ...) become '?' (the format is line-based), an empty name is written '?' and
+/// names are cut to kMaxBodyNameBytes. A tracked body with a non-finite pose is written as
+/// untracked, so that every written file reads back.
 [[nodiscard]] std::string format_recording_frame(const core::MocapFrame& frame,
                                                  core::SourceTime first_capture);
 
