@@ -1,0 +1,318 @@
+// Bridge: config validation, the step functions end to end with injected time (frames → poses,
+// loss → no pose / GPS fix 0, vehicle messages → TIMESYNC replies and origin confirmation, ticks →
+// heartbeats), capture-time mapping, runtime control and the snapshot.
+#include "mocaplink/core/bridge.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+namespace mocaplink::core {
+namespace {
+
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+
+const GeodeticPosition kOrigin{47.3977418, 8.5455938, 488.0};
+
+VehicleSpec vehicle(std::string name, std::string body, Profile profile, std::uint8_t sysid) {
+  VehicleSpec v;
+  v.name = std::move(name);
+  v.body = std::move(body);
+  v.profile = profile;
+  v.system_id = sysid;
+  return v;
+}
+
+BridgeConfig two_vehicles() {
+  BridgeConfig c;
+  c.world = *WorldAxisMapping::parse("+z", "+x");  // Vicon: NED = (x, −y, −z)
+  c.origin = kOrigin;
+  c.vehicles.push_back(vehicle("quad", "Quad", Profile::px4, 1));
+  c.vehicles.push_back(vehicle("rover", "Rover", Profile::ardupilot_gps, 2));
+  c.vehicles[1].rate_hz = 10.0;
+  c.timesync_requests = false;
+  return c;
+}
+
+Bridge make_bridge(const BridgeConfig& c) {
+  auto made = Bridge::make(c, HostTime{seconds(100)});
+  if (auto* error = std::get_if<BridgeConfigError>(&made)) {
+    ADD_FAILURE() << error->field << ": " << error->message;
+  }
+  return std::get<Bridge>(std::move(made));
+}
+
+MocapFrame frame_at(std::uint64_t n, bool quad, bool rover) {
+  MocapFrame f;
+  f.frame_number = n;
+  f.capture_time = SourceTime{milliseconds(10 * static_cast<std::int64_t>(n))};
+  f.source_latency = milliseconds(2);
+  BodySample q;
+  q.name = "Quad";
+  q.tracked = quad;
+  q.p_world_m = {1.0, 2.0, 3.0};
+  f.bodies.push_back(q);
+  BodySample r;
+  r.name = "Rover";
+  r.tracked = rover;
+  r.p_world_m = {-1.0, 0.5, 0.0};
+  if (rover) f.bodies.push_back(r);  // an untracked rover is simply absent from the frame
+  return f;
+}
+
+/// Host receive time of frame n: the source clock + 100 s, received 5 ms after capture.
+HostTime received_at(std::uint64_t n) {
+  return HostTime{seconds(100) + milliseconds(10 * static_cast<std::int64_t>(n) + 5)};
+}
+
+template <typename M>
+std::vector<std::pair<std::size_t, M>> of_type(const BridgeOutput& out) {
+  std::vector<std::pair<std::size_t, M>> v;
+  for (const auto& m : out.messages) {
+    if (const auto* p = std::get_if<M>(&m.message)) v.emplace_back(m.vehicle, *p);
+  }
+  return v;
+}
+
+TEST(BridgeConfigCheck, RefusesInvalidConfigs) {
+  auto expect_error = [](BridgeConfig c, const std::string& field) {
+    auto made = Bridge::make(c, HostTime{});
+    ASSERT_TRUE(std::holds_alternative<BridgeConfigError>(made)) << field;
+    EXPECT_EQ(std::get<BridgeConfigError>(made).field, field);
+  };
+  BridgeConfig c = two_vehicles();
+  c.origin.reset();
+  expect_error(c, "origin");  // GPS_INPUT needs one
+  c = two_vehicles();
+  c.vehicles[1].name = "quad";
+  expect_error(c, "vehicles[1].name");
+  c = two_vehicles();
+  c.vehicles[0].rate_hz = 0.0;
+  expect_error(c, "vehicles[0].rate_hz");
+  c = two_vehicles();
+  c.vehicles[0].component_id = 1;
+  expect_error(c, "vehicles[0].component_id");
+  c = two_vehicles();
+  c.vehicles[0].profile = Profile::custom;
+  expect_error(c, "vehicles[0].messages");
+  c = two_vehicles();
+  c.origin = GeodeticPosition{91.0, 0.0, 0.0};
+  expect_error(c, "origin");
+  c = two_vehicles();
+  c.tracking.gate_sigma = -1.0;
+  expect_error(c, "tracking.gate_sigma");
+}
+
+TEST(BridgeFrames, PosesInNedWithCaptureTimestamps) {
+  Bridge bridge = make_bridge(two_vehicles());
+  BridgeOutput last;
+  std::size_t odometry = 0;
+  for (std::uint64_t n = 1; n <= 100; ++n) {
+    last = bridge.on_frame(frame_at(n, true, true), received_at(n));
+    odometry += of_type<mavlink::Odometry>(last).size();
+    for (const auto& m : last.messages) {
+      // Vision messages go to the px4 vehicle only, GPS to the other: per-vehicle unicast.
+      if (std::holds_alternative<mavlink::Odometry>(m.message)) {
+        EXPECT_EQ(m.vehicle, 0U);
+      }
+      if (std::holds_alternative<mavlink::GpsInput>(m.message)) {
+        EXPECT_EQ(m.vehicle, 1U);
+      }
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(odometry), 50.0, 1.0);  // 1 s at 50 Hz
+  // The last ODOMETRY: mocap (1, 2, 3) with +z up, +x north → NED (1, −2, −3).
+  const auto snapshot = bridge.snapshot(received_at(100));
+  const auto& quad = snapshot.bodies[0].estimate;
+  EXPECT_NEAR(quad.p_ned_m.x(), 1.0, 1e-6);
+  EXPECT_NEAR(quad.p_ned_m.y(), -2.0, 1e-6);
+  EXPECT_NEAR(quad.p_ned_m.z(), -3.0, 1e-6);
+  // time_usec = receive − reported latency: frame n captured at 100 s + 10n ms + 3 ms.
+  BridgeOutput out = bridge.on_frame(frame_at(102, true, true), received_at(102));
+  const auto odo = of_type<mavlink::Odometry>(out);
+  ASSERT_EQ(odo.size(), 1U);
+  EXPECT_EQ(odo[0].second.time_usec, 101'023'000U);
+  EXPECT_NEAR(odo[0].second.x, 1.0F, 1e-5F);
+  EXPECT_NEAR(odo[0].second.y, -2.0F, 1e-5F);
+  EXPECT_NEAR(odo[0].second.z, -3.0F, 1e-5F);
+}
+
+TEST(BridgeFrames, LostBodyStopsPosesAndGpsReportsNoFix) {
+  BridgeConfig c = two_vehicles();
+  c.vehicles[0].profile = Profile::custom;  // ODOMETRY + GPS_INPUT on the same body
+  c.vehicles[0].messages = {MessageKind::odometry, MessageKind::gps_input};
+  Bridge bridge = make_bridge(c);
+  BridgeOutput out;
+  for (std::uint64_t n = 1; n <= 50; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
+  std::vector<BridgeEvent> events;
+  std::size_t odometry = 0;
+  std::vector<std::uint8_t> fixes;
+  for (std::uint64_t n = 51; n <= 150; ++n) {  // 1 s occluded
+    out = bridge.on_frame(frame_at(n, false, true), received_at(n));
+    odometry += of_type<mavlink::Odometry>(out).size();
+    for (const auto& [v, g] : of_type<mavlink::GpsInput>(out)) {
+      if (v == 0) fixes.push_back(g.fix_type);
+    }
+    events.insert(events.end(), out.events.begin(), out.events.end());
+  }
+  EXPECT_EQ(odometry, 0U);  // no stale pose, not even while merely occluded
+  ASSERT_FALSE(fixes.empty());
+  EXPECT_EQ(fixes.front(), 3);  // still TRACKING for loss_timeout_ms (prediction)
+  EXPECT_EQ(fixes.back(), 0);   // then LOST: fix 0, GPS keeps being sent
+  ASSERT_EQ(events.size(), 1U);
+  EXPECT_EQ(events[0].kind, BridgeEventKind::body_lost);
+  EXPECT_EQ(events[0].subject, "Quad");
+  // Re-acquired after 1 s: tracking again, reset_counter incremented (long loss).
+  events.clear();
+  for (std::uint64_t n = 151; n <= 160; ++n) {
+    out = bridge.on_frame(frame_at(n, true, true), received_at(n));
+    events.insert(events.end(), out.events.begin(), out.events.end());
+    odometry += of_type<mavlink::Odometry>(out).size();
+  }
+  EXPECT_GE(odometry, 1U);
+  ASSERT_EQ(events.size(), 2U);
+  EXPECT_EQ(events[0].kind, BridgeEventKind::body_reset);
+  EXPECT_EQ(events[1].kind, BridgeEventKind::body_tracking);
+  EXPECT_EQ(bridge.snapshot(received_at(160)).bodies[0].estimate.reset_counter, 1);
+}
+
+TEST(BridgeVehicles, TimesyncReplyOriginAndHeartbeats) {
+  Bridge bridge = make_bridge(two_vehicles());
+  // Tick at 100 s: a heartbeat per vehicle; SET_GPS_GLOBAL_ORIGIN only for the px4 vehicle.
+  BridgeOutput out = bridge.on_tick(HostTime{seconds(100)});
+  EXPECT_EQ(of_type<mavlink::Heartbeat>(out).size(), 2U);
+  auto origins = of_type<mavlink::SetGpsGlobalOrigin>(out);
+  ASSERT_EQ(origins.size(), 1U);
+  EXPECT_EQ(origins[0].first, 0U);
+  EXPECT_EQ(origins[0].second.target_system, 1);
+  for (const auto& m : out.messages) {
+    EXPECT_EQ(m.frame.bytes()[5], m.vehicle == 0 ? 1 : 2);  // source sysid = the vehicle's
+    EXPECT_EQ(m.frame.bytes()[6], 197);
+  }
+  // TIMESYNC request from the px4 autopilot: answered at once with our clock.
+  mavlink::Timesync request;
+  request.ts1 = 555;
+  out = bridge.on_vehicle_message(0, {1, 1, request}, HostTime{seconds(100) + milliseconds(250)});
+  auto replies = of_type<mavlink::Timesync>(out);
+  ASSERT_EQ(replies.size(), 1U);
+  EXPECT_EQ(replies[0].second.tc1, 100'250'000'000);
+  EXPECT_EQ(replies[0].second.ts1, 555);
+  EXPECT_EQ(replies[0].second.target_system, 1);
+  EXPECT_EQ(replies[0].second.target_component, 1);
+  // Matching GPS_GLOBAL_ORIGIN: confirmed, and no SET_GPS_GLOBAL_ORIGIN any more.
+  mavlink::GpsGlobalOrigin reported;
+  reported.latitude = 473977418;
+  reported.longitude = 85455938;
+  reported.altitude = 488000;
+  out = bridge.on_vehicle_message(0, {1, 1, reported}, HostTime{seconds(100) + milliseconds(500)});
+  ASSERT_EQ(out.events.size(), 1U);
+  EXPECT_EQ(out.events[0].kind, BridgeEventKind::origin_state);
+  EXPECT_EQ(out.events[0].text, "origin confirmed");
+  out = bridge.on_tick(HostTime{seconds(101)});
+  EXPECT_EQ(of_type<mavlink::Heartbeat>(out).size(), 2U);
+  EXPECT_TRUE(of_type<mavlink::SetGpsGlobalOrigin>(out).empty());
+  EXPECT_EQ(bridge.snapshot(HostTime{seconds(101)}).vehicles[0].vehicle.origin,
+            OriginState::confirmed);
+  // Out-of-range vehicle index: ignored.
+  EXPECT_TRUE(bridge.on_vehicle_message(9, {1, 1, request}, HostTime{}).messages.empty());
+}
+
+TEST(BridgeVehicles, LinkStateAndAgreementEvents) {
+  Bridge bridge = make_bridge(two_vehicles());
+  for (std::uint64_t n = 1; n <= 20; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = 12;
+  BridgeOutput out = bridge.on_vehicle_message(0, {1, 1, hb}, received_at(20));
+  ASSERT_EQ(out.events.size(), 1U);
+  EXPECT_EQ(out.events[0].text, "link alive");
+  // The vehicle reports its own estimate: right place, nose 90° off (body not nose-forward).
+  mavlink::LocalPositionNed pos;
+  pos.x = 1.0F;
+  pos.y = -2.0F;
+  pos.z = -3.0F;
+  mavlink::Attitude att;
+  att.yaw = static_cast<float>(std::numbers::pi / 2);
+  bridge.on_vehicle_message(0, {1, 1, pos}, received_at(20));
+  out = bridge.on_vehicle_message(0, {1, 1, att}, received_at(20));
+  ASSERT_EQ(out.events.size(), 1U);
+  EXPECT_EQ(out.events[0].kind, BridgeEventKind::agreement);
+  const auto agreement = bridge.snapshot(received_at(20)).vehicles[0].vehicle.agreement;
+  EXPECT_EQ(agreement.verdict, AgreementVerdict::disagrees);
+  EXPECT_NEAR(*agreement.yaw_offset_deg, 90.0, 0.5);
+  EXPECT_NEAR(*agreement.position_offset_m, 0.0, 1e-3);
+  out = bridge.on_tick(received_at(20) + seconds(4));
+  ASSERT_FALSE(out.events.empty());
+  EXPECT_EQ(out.events[0].text, "link silent");
+}
+
+TEST(BridgeControl, RateMessagesPauseDisableAndWallClock) {
+  BridgeConfig c = two_vehicles();
+  c.vehicles.push_back(vehicle("spare", "Quad", Profile::px4, 3));
+  c.vehicles[2].enabled = false;
+  Bridge bridge = make_bridge(c);
+  bridge.set_wall_clock(HostTime{seconds(100)}, 1'700'000'000'000'000);
+  EXPECT_FALSE(bridge.set_rate_hz(5, 10.0));
+  EXPECT_FALSE(bridge.set_rate_hz(0, -1.0));
+  EXPECT_TRUE(bridge.set_rate_hz(0, 10.0));
+  EXPECT_TRUE(bridge.set_paused(1, false));
+  EXPECT_TRUE(bridge.set_messages(0, MessageSet{MessageKind::vision_position_estimate}));
+  std::size_t vpe = 0;
+  std::size_t odometry = 0;
+  std::vector<mavlink::GpsInput> gps;
+  for (std::uint64_t n = 1; n <= 100; ++n) {
+    const BridgeOutput out = bridge.on_frame(frame_at(n, true, true), received_at(n));
+    vpe += of_type<mavlink::VisionPositionEstimate>(out).size();
+    odometry += of_type<mavlink::Odometry>(out).size();
+    for (const auto& [v, g] : of_type<mavlink::GpsInput>(out)) gps.push_back(g);
+    for (const auto& m : out.messages) EXPECT_NE(m.vehicle, 2U);  // disabled: nothing sent
+  }
+  EXPECT_NEAR(static_cast<double>(vpe), 10.0, 1.0);
+  EXPECT_EQ(odometry, 0U);
+  ASSERT_FALSE(gps.empty());
+  // Wall clock known: real GPS time of the capture (week 2288 for November 2023).
+  EXPECT_EQ(gps.back().time_week, 2288);
+  EXPECT_GT(gps.back().time_week_ms, 252'818'000U);
+  EXPECT_EQ(gps.back().yaw, 36000);  // identity attitude with +x north: nose north
+  EXPECT_TRUE(bridge.set_paused(0, true));
+  const BridgeOutput paused = bridge.on_frame(frame_at(200, true, true), received_at(200));
+  EXPECT_TRUE(of_type<mavlink::VisionPositionEstimate>(paused).empty());
+  EXPECT_TRUE(bridge.on_tick(HostTime{seconds(200)}).messages.size() >= 2U);  // heartbeats go on
+  const auto s = bridge.snapshot(received_at(200));
+  ASSERT_EQ(s.vehicles.size(), 3U);
+  EXPECT_TRUE(s.vehicles[0].sender.paused);
+  EXPECT_EQ(s.vehicles[0].sender.rate_hz, 10.0);
+  EXPECT_FALSE(s.vehicles[2].enabled);
+  EXPECT_EQ(s.bodies.size(), 2U);  // "spare" shares the Quad tracker
+  EXPECT_EQ(s.station.frames, 101U);
+}
+
+TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {
+  CaptureTimeMapper mapper;
+  // Frames every 10 ms, received 3..7 ms after capture (+100 s clock offset), no latency report.
+  const int delays_ms[] = {5, 3, 7, 4, 6, 3, 5};
+  std::optional<HostTime> previous;
+  for (int i = 0; i < 7; ++i) {
+    const SourceTime capture{milliseconds(10 * i)};
+    const HostTime received{seconds(100) + milliseconds(10 * i + delays_ms[i])};
+    const HostTime t = mapper.on_frame(capture, received, std::nullopt);
+    EXPECT_LE(t, received);
+    if (previous) {
+      EXPECT_GT(t, *previous);
+    }
+    previous = t;
+    if (i >= 1) {
+      EXPECT_EQ(t, HostTime{seconds(100) + milliseconds(10 * i + 3)}) << i;
+    }
+  }
+  // A source restart (its clock starts again at 0 a minute later) re-seeds instead of stalling.
+  const HostTime t =
+      mapper.on_frame(SourceTime{milliseconds(5)}, HostTime{seconds(160)}, std::nullopt);
+  EXPECT_EQ(mapper.reseeds(), 1U);
+  EXPECT_EQ(t, HostTime{seconds(160)});
+}
+
+}  // namespace
+}  // namespace mocaplink::core
