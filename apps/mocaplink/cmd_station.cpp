@@ -74,7 +74,7 @@ class StationSession {
   StationSession& operator=(const StationSession&) = delete;
 
   /// Calls `tick` every `period` until `limit` (if any) has passed, the source finished or gave
-  /// up (finished/disconnected for a file), or SIGINT/SIGTERM.
+  /// up (`finished`: nothing more will come), or SIGINT/SIGTERM.
   void run(std::optional<std::chrono::duration<double>> limit, std::chrono::milliseconds period,
            const std::function<void()>& tick) {
     const auto start = Clock::now();
@@ -103,12 +103,8 @@ class StationSession {
   void stop() { source_->stop(); }
 
  private:
-  // A finished source, or a file source that failed, will deliver nothing more. A network source
-  // that is disconnected keeps reconnecting, so it does not end the wait.
-  bool done_locked() const {
-    return state_ == SourceState::finished ||
-           (state_ == SourceState::disconnected && source_->url().rfind("replay:", 0) == 0);
-  }
+  // A network source that is disconnected keeps reconnecting, so only `finished` ends the wait.
+  bool done_locked() const { return state_ == SourceState::finished; }
 
   std::unique_ptr<sources::Source> source_;
   FrameHook also_;

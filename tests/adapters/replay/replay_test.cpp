@@ -89,7 +89,7 @@ struct Collected {
         [this](SourceState s, const std::string& detail) {
           const std::lock_guard lock(mutex);
           states.emplace_back(s, detail);
-          ended = ended || s == SourceState::finished || s == SourceState::disconnected;
+          ended = ended || s == SourceState::finished;
           cv.notify_all();
         });
     std::unique_lock lock(mutex);
@@ -171,7 +171,7 @@ TEST(ReplaySource, MalformedLineMidFileStopsWithFileAndLine) {
   source->stop();
   // Frames 7 and 8; frame 10 was still open (a row of it could follow) when line 7 failed.
   EXPECT_EQ(got.frames.size(), 2u);
-  ASSERT_EQ(got.states.back().first, SourceState::disconnected);
+  ASSERT_EQ(got.states.back().first, SourceState::finished);
   EXPECT_NE(got.states.back().second.find("bad.csv:7: column x_m: 'oops'"), std::string::npos)
       << got.states.back().second;
   EXPECT_EQ(source->counters().malformed.load(), 1u);

@@ -197,3 +197,23 @@ TEST(RecordCommand, SourceThatNeverDeliversExitsTwo) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RecordCommand, SecondsEndsAnEndlessSource) {
+  const std::string out = testing::TempDir() + "/station_cli_seconds.csv";
+  const ProcessResult run =
+      run_mocaplink("record --source 'sim://?bodies=2&rate_hz=100' --seconds 0.5 --out " + out);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  auto parsed = mocaplink::wire::parse_recording(read_file(out));
+  ASSERT_TRUE(std::holds_alternative<mocaplink::wire::Recording>(parsed));
+  const auto& recording = std::get<mocaplink::wire::Recording>(parsed);
+  EXPECT_EQ(recording.header.source, "sim://?bodies=2&rate_hz=100");
+  EXPECT_EQ(recording.header.rate_hz, 100.0);
+  EXPECT_GT(recording.frames.size(), 5u);  // ~50; only "it stopped and wrote frames" matters
+  EXPECT_EQ(recording.frames.front().frame_number, 1u);
+  EXPECT_EQ(recording.frames.front().capture_time.time_since_epoch().count(), 0);  // from frame 1
+  EXPECT_NE(run.err.find("frames (0 dropped, 2 bodies)"), std::string::npos) << run.err;
+}
+
+}  // namespace

@@ -128,7 +128,7 @@ void ReplaySource::run(const FrameSink& on_frame, const StateSink& on_state) {
   do {
     LineReader lines(config_.path);
     if (!lines.is_open()) {
-      state(SourceState::disconnected, "cannot open '" + config_.path + "'");
+      state(SourceState::finished, "cannot open '" + config_.path + "'");
       return;
     }
     wire::RecordingReader reader;
@@ -137,7 +137,7 @@ void ReplaySource::run(const FrameSink& on_frame, const StateSink& on_state) {
     while (auto step = read_step(lines, reader, at_end)) {
       if (const auto* error = std::get_if<wire::RecordingError>(&*step)) {
         counters_.malformed.fetch_add(1, std::memory_order_relaxed);
-        state(SourceState::disconnected, describe(config_.path, *error));
+        state(SourceState::finished, describe(config_.path, *error));
         return;
       }
       auto& frame = std::get<std::optional<core::MocapFrame>>(*step);

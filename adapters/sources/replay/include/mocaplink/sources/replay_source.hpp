@@ -14,10 +14,10 @@
 
 namespace mocaplink::sources {
 
-/// States: `connected` when playback starts; `finished` at the end of the file (detail: how many
-/// frames); `disconnected` with "FILE:LINE: reason" if the file turns out malformed mid-way
-/// (the frames completed before the bad line have been delivered — not the one still open
-/// when it came; malformed is incremented) or cannot be read.
+/// States: `connected` when playback starts, then `finished` once nothing more will come: at the
+/// end of the file (detail: "N frames replayed"), or with detail "FILE:LINE: reason" when the file
+/// turns out malformed mid-way or unreadable (malformed is incremented; the frames completed
+/// before the bad line have been delivered, not the one still open when it came).
 /// Frames keep the recorded frame numbers and capture times (the source clock is the
 /// recording's); `received` is the host time of delivery.
 /// Thread-safety: start/stop from one controlling thread; callbacks run on the source's thread.
