@@ -40,6 +40,14 @@ std::optional<BridgeConfigError> validate_vehicle(const BridgeConfig& config, st
 
 }  // namespace
 
+WorldAxisMapping default_world_axes() {
+  return *WorldAxisMapping::parse("+z", "+x");
+}
+
+BodyAxisMapping default_body_axes() {
+  return *BodyAxisMapping::parse("+x", "+z");
+}
+
 std::string_view to_string(BridgeEventKind kind) {
   switch (kind) {
     case BridgeEventKind::body_tracking:

@@ -43,6 +43,11 @@
 
 namespace mocaplink::core {
 
+/// The configuration's defaults (DESIGN.md "Configuration"): mocap world +z up, +x north
+/// (Vicon/QTM); rigid body +x forward, +z up (FLU), mapped to FRD.
+[[nodiscard]] WorldAxisMapping default_world_axes();
+[[nodiscard]] BodyAxisMapping default_body_axes();
+
 /// One vehicle (the core's view of a config [[vehicle]]; the app maps config → this).
 struct VehicleSpec {
   std::string name;  ///< unique, for events and the dashboard
@@ -54,12 +59,12 @@ struct VehicleSpec {
   double rate_hz = 50.0;              ///< (0, kMaxSenderRateHz]
   std::optional<std::array<std::uint8_t, 32>> signing_key;
   std::uint8_t signing_link_id = 0;
-  BodyAxisMapping body_axes;  ///< which rigid-body axes are FRD
-  bool enabled = true;        ///< false: tracked and shown, nothing sent
+  BodyAxisMapping body_axes = default_body_axes();  ///< rigid-body axes → FRD
+  bool enabled = true;                              ///< false: tracked and shown, nothing sent
 };
 
 struct BridgeConfig {
-  WorldAxisMapping world;  ///< mocap world → NED
+  WorldAxisMapping world = default_world_axes();  ///< mocap world → NED
   /// Geodetic origin of the mocap frame (altitude AMSL, used as is: docs/messages.md "Altitude").
   /// Required when a vehicle's messages need it (HIL_GPS, GPS_INPUT).
   std::optional<GeodeticPosition> origin;
