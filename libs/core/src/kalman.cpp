@@ -1,5 +1,8 @@
 #include "mocaplink/core/kalman.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "mocaplink/core/quaternion.hpp"
 
 namespace mocaplink::core {
@@ -45,27 +48,119 @@ Matrix6d constant_velocity_process_noise(double dt_s, double psd) {
   return q;
 }
 
-void PositionFilter::initialise(const Eigen::Vector3d& p_m, const Eigen::Vector3d& v_mps,
-                                double p_var_m2, double v_var_m2ps2) {
-  x_ << p_m, v_mps;
-  p_.setZero();
-  p_.topLeftCorner<3, 3>().diagonal().setConstant(p_var_m2);
-  p_.bottomRightCorner<3, 3>().diagonal().setConstant(v_var_m2ps2);
+Eigen::Matrix3d constant_acceleration_process_noise(double dt_s, double psd) {
+  const double dt2 = dt_s * dt_s;
+  const double dt3 = dt2 * dt_s;
+  Eigen::Matrix3d q;
+  q << dt3 * dt2 / 20.0, dt2 * dt2 / 8.0, dt3 / 6.0,  //
+      dt2 * dt2 / 8.0, dt3 / 3.0, dt2 / 2.0,          //
+      dt3 / 6.0, dt2 / 2.0, dt_s;
+  return psd * q;
 }
 
-void PositionFilter::predict(double dt_s, double accel_psd) {
-  Matrix6d f = Matrix6d::Identity();
-  f.topRightCorner<3, 3>().diagonal().setConstant(dt_s);
-  x_.head<3>() += dt_s * x_.tail<3>();
-  p_ = f * p_ * f.transpose() + constant_velocity_process_noise(dt_s, accel_psd);
+void PositionFilter::initialise(const Eigen::Vector3d& p_m, const Eigen::Vector3d& v_mps,
+                                double p_var_m2, double v_var_m2ps2, double a_var_m2ps4) {
+  for (int i = 0; i < 3; ++i) {
+    Axis& axis = axis_[i];
+    for (Model& m : axis.model) {
+      m.x = {p_m[i], v_mps[i], 0.0};
+      m.p = Eigen::Vector3d(p_var_m2, v_var_m2ps2, a_var_m2ps4).asDiagonal();
+    }
+    axis.mu[0] = axis.mu[1] = 0.5;
+  }
+}
+
+void PositionFilter::predict(double dt_s) {
+  // Markov switching probability over dt for a mean sojourn time tau: 1 - exp(-dt / tau).
+  const double sw = -std::expm1(-dt_s / params_.mode_switch_time_s);
+  const double pi[2][2] = {{1.0 - sw, sw}, {sw, 1.0 - sw}};  // pi[from][to]
+  Eigen::Matrix3d f;
+  f << 1.0, dt_s, 0.5 * dt_s * dt_s, 0.0, 1.0, dt_s, 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d q_unit = constant_acceleration_process_noise(dt_s, 1.0);
+  const double psd[2] = {params_.quiet_jerk_psd, params_.manoeuvre_jerk_psd};
+  for (Axis& axis : axis_) {
+    // IMM interaction: each model restarts from the mixture of both, weighted by the
+    // probability that the system was in model i given that it is now in model j.
+    Model mixed[2];
+    double c[2];
+    for (int j = 0; j < 2; ++j) {
+      c[j] = pi[0][j] * axis.mu[0] + pi[1][j] * axis.mu[1];
+      const double w0 = pi[0][j] * axis.mu[0] / c[j];
+      const double w1 = pi[1][j] * axis.mu[1] / c[j];
+      mixed[j].x = w0 * axis.model[0].x + w1 * axis.model[1].x;
+      const Eigen::Vector3d d0 = axis.model[0].x - mixed[j].x;
+      const Eigen::Vector3d d1 = axis.model[1].x - mixed[j].x;
+      mixed[j].p = w0 * (axis.model[0].p + d0 * d0.transpose()) +
+                   w1 * (axis.model[1].p + d1 * d1.transpose());
+    }
+    for (int j = 0; j < 2; ++j) {
+      axis.model[j].x = f * mixed[j].x;
+      axis.model[j].p = f * mixed[j].p * f.transpose() + psd[j] * q_unit;
+      axis.mu[j] = c[j];  // predicted model probability
+    }
+  }
 }
 
 Innovation PositionFilter::innovation(const Eigen::Vector3d& z_m, double r_m2) const {
-  return make_innovation(p_, z_m - x_.head<3>(), r_m2);
+  Innovation in;
+  in.nu = z_m - p_m();
+  in.s = position_covariance() + r_m2 * Eigen::Matrix3d::Identity();
+  in.mahalanobis = mahalanobis(in.nu, in.s);
+  return in;
 }
 
-void PositionFilter::update(const Innovation& innovation, double r_m2) {
-  x_ += joseph_update(p_, innovation, r_m2);
+void PositionFilter::update(const Eigen::Vector3d& z_m, double r_m2) {
+  // Floor on a model probability so that a long-unused model can take over within a few frames.
+  constexpr double kMinProbability = 1e-4;
+  for (int i = 0; i < 3; ++i) {
+    Axis& axis = axis_[i];
+    double log_l[2];
+    for (int j = 0; j < 2; ++j) {
+      Model& m = axis.model[j];
+      const double s = m.p(0, 0) + r_m2;
+      const double nu = z_m[i] - m.x[0];
+      const Eigen::Vector3d k = m.p.col(0) / s;
+      Eigen::Matrix3d i_kh = Eigen::Matrix3d::Identity();
+      i_kh.col(0) -= k;
+      m.x += k * nu;
+      m.p = i_kh * m.p * i_kh.transpose() + r_m2 * k * k.transpose();
+      log_l[j] = -0.5 * (nu * nu / s + std::log(s));  // Gaussian likelihood, constant dropped
+    }
+    // Bayes on the model probabilities, in logs to avoid underflow for large innovations.
+    const double top = std::max(log_l[0], log_l[1]);
+    const double w0 = axis.mu[0] * std::exp(log_l[0] - top);
+    const double w1 = axis.mu[1] * std::exp(log_l[1] - top);
+    axis.mu[0] = std::clamp(w0 / (w0 + w1), kMinProbability, 1.0 - kMinProbability);
+    axis.mu[1] = 1.0 - axis.mu[0];
+  }
+}
+
+Eigen::Vector3d PositionFilter::combined(int row) const {
+  Eigen::Vector3d out;
+  for (int i = 0; i < 3; ++i) {
+    const Axis& a = axis_[i];
+    out[i] = a.mu[0] * a.model[0].x[row] + a.mu[1] * a.model[1].x[row];
+  }
+  return out;
+}
+
+Eigen::Matrix3d PositionFilter::combined_cov(int row) const {
+  Eigen::Matrix3d out = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const Axis& a = axis_[i];
+    const double mean = a.mu[0] * a.model[0].x[row] + a.mu[1] * a.model[1].x[row];
+    double var = 0.0;
+    for (int j = 0; j < 2; ++j) {
+      const double d = a.model[j].x[row] - mean;
+      var += a.mu[j] * (a.model[j].p(row, row) + d * d);
+    }
+    out(i, i) = var;
+  }
+  return out;
+}
+
+Eigen::Vector3d PositionFilter::manoeuvre_probability() const {
+  return {axis_[0].mu[1], axis_[1].mu[1], axis_[2].mu[1]};
 }
 
 void AttitudeFilter::initialise(const Eigen::Quaterniond& q_ned_frd,

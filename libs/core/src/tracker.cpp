@@ -13,6 +13,8 @@ namespace {
 // standard deviation, enough for a body picked up in flight; a few frames of sub-mm data shrink it.
 constexpr double kInitialVelocityVar = 4.0;
 constexpr double kInitialRateVar = 9.0;
+// Initial acceleration uncertainty: 10 m/s^2 standard deviation (a multirotor's envelope).
+constexpr double kInitialAccelVar = 100.0;
 
 double ms_to_s(double ms) {
   return ms * 1e-3;
@@ -55,8 +57,11 @@ Tracker::Tracker(const TrackerConfig& config, const AxisMapping& mapping)
                  e->field.c_str(), e->message.c_str());
     std::abort();
   }
-  // Spectral densities of the white accelerations (TrackerConfig docs): sigma^2 * 1 s.
-  accel_psd_ = config.accel_noise_mps2 * config.accel_noise_mps2;
+  // Spectral densities (TrackerConfig docs): sigma^2 / 1 s for jerk, sigma^2 * 1 s for angular
+  // acceleration.
+  const double manoeuvre_psd = config.accel_noise_mps2 * config.accel_noise_mps2;
+  position_ = PositionFilter(
+      PositionFilterParams{manoeuvre_psd * kQuietJerkRatio, manoeuvre_psd, kModeSwitchTimeS});
   angular_accel_psd_ = config.angular_accel_noise_radps2 * config.angular_accel_noise_radps2;
   r_position_m2_ = config.position_noise_m * config.position_noise_m;
   r_attitude_rad2_ = config.attitude_noise_rad * config.attitude_noise_rad;
@@ -90,7 +95,7 @@ void Tracker::update_liveness(SourceTime capture_time) {
 void Tracker::predict_to(SourceTime capture_time) {
   const double dt = to_seconds(capture_time - filter_time_);
   if (dt <= 0.0) return;
-  position_.predict(dt, accel_psd_);
+  position_.predict(dt);
   attitude_.predict(dt, angular_accel_psd_);
   filter_time_ = capture_time;
 }
@@ -151,7 +156,7 @@ SampleOutcome Tracker::fuse(SourceTime capture_time, const Eigen::Vector3d& p_ne
   const bool pos_out = pos.mahalanobis > config_.gate_sigma && pos.nu.norm() > config_.gate_min_m;
   const bool att_out = att.mahalanobis > config_.gate_sigma && att.nu.norm() > kAttitudeGateMinRad;
   if (!pos_out && !att_out) {
-    position_.update(pos, r_position_m2_);
+    position_.update(p_ned_m, r_position_m2_);
     attitude_.update(att, r_attitude_rad2_);
     last_valid_time_ = capture_time;
     estimate_.state = TrackingState::tracking;
@@ -170,7 +175,6 @@ SampleOutcome Tracker::fuse(SourceTime capture_time, const Eigen::Vector3d& p_ne
 
 SampleOutcome Tracker::handle_gated(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
                                     const Eigen::Quaterniond& q_ned_frd) {
-  ++estimate_.counters.rejected_outliers;
   // Consistent with the previous gated sample: where that one would have moved with the filter's
   // velocity, within gate_min_m, and the same attitude within kAttitudeGateMinRad.
   bool consistent = false;
@@ -191,6 +195,7 @@ SampleOutcome Tracker::handle_gated(SourceTime capture_time, const Eigen::Vector
     start(capture_time, p_ned_m, q_ned_frd, true);
     return SampleOutcome::reset;
   }
+  ++estimate_.counters.rejected_outliers;
   return SampleOutcome::rejected_outlier;
 }
 
@@ -200,7 +205,7 @@ void Tracker::start(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
   const Eigen::Vector3d w = keep_rates ? attitude_.w_frd_radps() : Eigen::Vector3d::Zero();
   const Eigen::Quaterniond q =
       initialised_ ? continuous_with(q_ned_frd, estimate_.q_ned_frd) : q_ned_frd.normalized();
-  position_.initialise(p_ned_m, v, r_position_m2_, kInitialVelocityVar);
+  position_.initialise(p_ned_m, v, r_position_m2_, kInitialVelocityVar, kInitialAccelVar);
   attitude_.initialise(q, w, r_attitude_rad2_, kInitialRateVar);
   if (initialised_) {
     ++estimate_.reset_counter;  // uint8_t: wraps 255 -> 0 as ODOMETRY.reset_counter expects
@@ -224,12 +229,11 @@ void Tracker::publish(SourceTime capture_time, SampleOutcome outcome) {
   estimate_.q_ned_frd = attitude_.q_ned_frd();
   estimate_.w_frd_radps = attitude_.w_frd_radps();
   estimate_.pose_covariance.setZero();
-  estimate_.pose_covariance.topLeftCorner<3, 3>() = position_.covariance().topLeftCorner<3, 3>();
+  estimate_.pose_covariance.topLeftCorner<3, 3>() = position_.position_covariance();
   estimate_.pose_covariance.bottomRightCorner<3, 3>() =
       attitude_.covariance().topLeftCorner<3, 3>();
   estimate_.velocity_covariance.setZero();
-  estimate_.velocity_covariance.topLeftCorner<3, 3>() =
-      position_.covariance().bottomRightCorner<3, 3>();
+  estimate_.velocity_covariance.topLeftCorner<3, 3>() = position_.velocity_covariance();
   estimate_.velocity_covariance.bottomRightCorner<3, 3>() =
       attitude_.covariance().bottomRightCorner<3, 3>();
 }

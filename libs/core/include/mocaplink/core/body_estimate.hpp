@@ -50,11 +50,12 @@ inline constexpr std::size_t kInvalidInputCount = 4;
 
 /// Monotonic counters since the Tracker was created (never reset, not even by a filter reset).
 struct TrackerCounters {
-  std::uint64_t samples = 0;            ///< tracked samples offered (valid or not)
-  std::uint64_t accepted = 0;           ///< fused (accepted + initialised + reset outcomes)
-  std::uint64_t untracked = 0;          ///< frames in which the body was occluded or absent
-  std::uint64_t rejected_outliers = 0;  ///< gated out (includes samples later confirming a jump)
-  std::uint64_t resets = 0;             ///< filter re-initialisations (reset_counter increments)
+  std::uint64_t samples = 0;    ///< tracked samples offered (valid or not)
+  std::uint64_t accepted = 0;   ///< fused (accepted + initialised + reset outcomes)
+  std::uint64_t untracked = 0;  ///< frames in which the body was occluded or absent
+  std::uint64_t rejected_outliers =
+      0;                     ///< gated out (includes a jump's samples before it is confirmed)
+  std::uint64_t resets = 0;  ///< filter re-initialisations (reset_counter increments)
   std::array<std::uint64_t, kInvalidInputCount> invalid_input{};  ///< indexed by InvalidInput
 
   [[nodiscard]] std::uint64_t invalid(InvalidInput reason) const {

@@ -1,13 +1,23 @@
 // The per-body Kalman filters the Tracker runs on every mocap frame (docs/frames.md "Tracking").
 //
-// PositionFilter: constant-velocity model, state [p; v] in NED, driven by continuous white-noise
-// acceleration of spectral density q (m^2/s^3), discretised exactly for the step dt (Bar-Shalom,
-// "Estimation with Applications to Tracking and Navigation", 6.2.2):
-//     F = [I  dt I; 0  I],   Q = q [dt^3/3 I  dt^2/2 I; dt^2/2 I  dt I].
+// PositionFilter: interacting multiple model (IMM; Blom & Bar-Shalom 1988) of two
+// constant-acceleration models per NED axis, state [p v a], driven by white jerk of spectral
+// density q (m^2/s^5), discretised exactly for the step dt (Bar-Shalom, Li & Kirubarajan,
+// "Estimation with Applications to Tracking and Navigation", 6.2.3):
+//     F = [1 dt dt^2/2; 0 1 dt; 0 0 1],
+//     Q = q [dt^5/20 dt^4/8 dt^3/6; dt^4/8 dt^3/3 dt^2/2; dt^3/6 dt^2/2 dt].
+// A "quiet" model (small q: hover, slow motion, low noise) and a "manoeuvre" model (large q: fast
+// changes of acceleration) run side by side; their estimates are mixed by the probability of each
+// model given the innovations. Why not one constant-velocity filter: its velocity lags the truth
+// by k1/k2 = sqrt(2)/omega_n under acceleration, so a lag below 5 ms needs a bandwidth near the
+// Nyquist rate of a 100 Hz mocap system, i.e. no noise reduction at all (docs/performance.md
+// "Filter accuracy" has the figures).
+// The three axes are independent filters (isotropic measurement noise, no cross-axis dynamics).
+//
 // AttitudeFilter: error-state filter on the nominal attitude q_ned_frd and body rate w_frd, error
 // state [dtheta; dw] (rotation error about the FRD body axes, right-multiplied: q_true = q *
-// Exp(dtheta)), constant-angular-velocity model with white angular-acceleration noise, discretised
-// the same way.
+// Exp(dtheta)), constant-angular-velocity model with white angular-acceleration noise of spectral
+// density q (rad^2/s^3): F = [I dt I; 0 I], Q = q [dt^3/3 I, dt^2/2 I; dt^2/2 I, dt I].
 //
 // Fixed-size Eigen matrices only: no allocation on the per-frame path. Not thread-safe (one owner).
 #pragma once
@@ -25,6 +35,10 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 /// [three positions; three velocities].
 [[nodiscard]] Matrix6d constant_velocity_process_noise(double dt_s, double psd);
 
+/// Discrete process noise of one axis of a constant-acceleration model over dt >= 0 seconds for
+/// white jerk of spectral density psd >= 0 (m^2/s^5); state order [p, v, a].
+[[nodiscard]] Eigen::Matrix3d constant_acceleration_process_noise(double dt_s, double psd);
+
 /// A measurement's innovation against the prediction.
 struct Innovation {
   Eigen::Vector3d nu = Eigen::Vector3d::Zero();     ///< measurement - prediction (m or rad)
@@ -32,27 +46,54 @@ struct Innovation {
   double mahalanobis = 0.0;                         ///< sqrt(nu^T S^-1 nu), dimensionless
 };
 
-/// Constant-velocity position filter (NED, metres).
+/// Parameters of the two-model position filter.
+struct PositionFilterParams {
+  double quiet_jerk_psd = 0.1;      ///< m^2/s^5, > 0
+  double manoeuvre_jerk_psd = 300;  ///< m^2/s^5, >= quiet_jerk_psd
+  double mode_switch_time_s = 2.0;  ///< mean sojourn time in a model (Markov switching), > 0
+};
+
+/// Two-model (IMM) constant-acceleration position filter, NED metres. See the file comment.
 class PositionFilter {
  public:
-  /// Starts at position p (m) and velocity v (m/s) with isotropic variances (m^2, (m/s)^2).
-  void initialise(const Eigen::Vector3d& p_m, const Eigen::Vector3d& v_mps, double p_var_m2,
-                  double v_var_m2ps2);
-  /// Propagates by dt_s >= 0 with acceleration spectral density accel_psd (m^2/s^3).
-  void predict(double dt_s, double accel_psd);
-  /// Innovation of a position measurement with isotropic noise variance r_m2 > 0.
-  [[nodiscard]] Innovation innovation(const Eigen::Vector3d& z_m, double r_m2) const;
-  /// Fuses the measurement whose innovation was computed with the same r_m2 (Joseph form).
-  void update(const Innovation& innovation, double r_m2);
+  PositionFilter() = default;
+  explicit PositionFilter(const PositionFilterParams& params) : params_(params) {}
 
-  [[nodiscard]] Eigen::Vector3d p_m() const { return x_.head<3>(); }
-  [[nodiscard]] Eigen::Vector3d v_mps() const { return x_.tail<3>(); }
-  /// Covariance of [p; v].
-  [[nodiscard]] const Matrix6d& covariance() const { return p_; }
+  /// Starts both models at position p (m), velocity v (m/s), zero acceleration, with isotropic
+  /// variances (m^2, (m/s)^2, (m/s^2)^2); probability of the manoeuvre model 0.5.
+  void initialise(const Eigen::Vector3d& p_m, const Eigen::Vector3d& v_mps, double p_var_m2,
+                  double v_var_m2ps2, double a_var_m2ps4);
+  /// Mixes the models (IMM interaction) and propagates both by dt_s >= 0.
+  void predict(double dt_s);
+  /// Innovation of a position measurement (isotropic noise variance r_m2 > 0) against the mixed
+  /// prediction; S includes the spread between the models. For gating.
+  [[nodiscard]] Innovation innovation(const Eigen::Vector3d& z_m, double r_m2) const;
+  /// Fuses the measurement into both models and updates the model probabilities.
+  void update(const Eigen::Vector3d& z_m, double r_m2);
+
+  [[nodiscard]] Eigen::Vector3d p_m() const { return combined(0); }
+  [[nodiscard]] Eigen::Vector3d v_mps() const { return combined(1); }
+  [[nodiscard]] Eigen::Vector3d a_mps2() const { return combined(2); }
+  /// Diagonal covariance of the combined position / velocity estimate (the axes are independent).
+  [[nodiscard]] Eigen::Matrix3d position_covariance() const { return combined_cov(0); }
+  [[nodiscard]] Eigen::Matrix3d velocity_covariance() const { return combined_cov(1); }
+  /// Probability of the manoeuvre model per axis, [0, 1].
+  [[nodiscard]] Eigen::Vector3d manoeuvre_probability() const;
 
  private:
-  Vector6d x_ = Vector6d::Zero();
-  Matrix6d p_ = Matrix6d::Identity();
+  struct Model {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();  ///< [p, v, a] of one axis
+    Eigen::Matrix3d p = Eigen::Matrix3d::Identity();
+  };
+  struct Axis {
+    Model model[2];             ///< 0 = quiet, 1 = manoeuvre
+    double mu[2] = {0.5, 0.5};  ///< model probabilities
+  };
+  [[nodiscard]] Eigen::Vector3d combined(int row) const;
+  [[nodiscard]] Eigen::Matrix3d combined_cov(int row) const;
+
+  PositionFilterParams params_;
+  Axis axis_[3];
 };
 
 /// Error-state attitude and body-rate filter.

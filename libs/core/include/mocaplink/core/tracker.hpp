@@ -36,11 +36,14 @@ struct TrackerConfig {
   double position_noise_m = 0.0005;
   /// Standard deviation of mocap attitude noise per axis, rad. > 0.
   double attitude_noise_rad = 0.003;
-  /// Acceleration process noise: the white-noise acceleration's spectral density is
-  /// accel_noise_mps2^2 * 1 s (m^2/s^3), i.e. unmodelled acceleration makes the velocity
-  /// random-walk by accel_noise_mps2 m/s per sqrt(second). Larger = less lag, more noise. > 0.
-  double accel_noise_mps2 = 20.0;
-  /// The same for angular acceleration (rad/s^2 per sqrt(Hz)). > 0.
+  /// How fast the acceleration of a manoeuvring body may change: the position filter's manoeuvre
+  /// model has white jerk of spectral density accel_noise_mps2^2 / 1 s (m^2/s^5), i.e. its
+  /// acceleration random-walks by accel_noise_mps2 m/s^2 per sqrt(second). The quiet model uses
+  /// kQuietJerkRatio of that. Larger = faster response to manoeuvres, more noise. > 0.
+  double accel_noise_mps2 = 17.3;
+  /// Angular-acceleration process noise of the attitude filter (constant angular velocity model):
+  /// white angular acceleration of spectral density angular_accel_noise_radps2^2 * 1 s
+  /// (rad^2/s^3): the body rate random-walks by this many rad/s per sqrt(second). > 0.
   double angular_accel_noise_radps2 = 60.0;
   /// Innovation gate in standard deviations (Mahalanobis distance). > 0.
   double gate_sigma = 6.0;
@@ -62,6 +65,12 @@ struct TrackerConfigError {
 /// Range check of every parameter (the ranges documented above); nullopt when valid. The first
 /// problem found is returned.
 [[nodiscard]] std::optional<TrackerConfigError> validate(const TrackerConfig& config);
+
+/// Jerk spectral density of the quiet model / that of the manoeuvre model (docs/performance.md
+/// "Filter accuracy": tuned on the hover, figure-eight and point-to-point scenarios).
+inline constexpr double kQuietJerkRatio = 1.0 / 3000.0;
+/// Mean time the position filter stays in one model (IMM Markov switching), s.
+inline constexpr double kModeSwitchTimeS = 2.0;
 
 /// Attitude innovations up to this many radians are always accepted (the attitude counterpart of
 /// gate_min_m; 0.1 rad = 5.7 deg, far above mocap attitude noise, far below a marker swap).
@@ -105,7 +114,6 @@ class Tracker {
 
   TrackerConfig config_;
   AxisMapping mapping_;
-  double accel_psd_ = 0.0;
   double angular_accel_psd_ = 0.0;
   double r_position_m2_ = 0.0;
   double r_attitude_rad2_ = 0.0;
