@@ -33,8 +33,7 @@ MappedFrame to_mocap_frame(const DecodedFrame& decoded) {
     double total_s = 0.0;
     for (const LatencySample& s : decoded.latency->samples) total_s += s.seconds;
     if (std::isfinite(total_s) && std::abs(total_s) < 3600.0) {
-      f.source_latency =
-          std::chrono::duration_cast<core::Duration>(std::chrono::duration<double>(total_s));
+      f.source_latency = std::chrono::round<core::Duration>(std::chrono::duration<double>(total_s));
     }
   }
   f.bodies.reserve(decoded.subjects.size());
