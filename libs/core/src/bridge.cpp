@@ -100,7 +100,7 @@ Bridge::Bridge(const BridgeConfig& config, HostTime start)
     if (it == bodies_.end()) {
       bodies_.push_back(Body{spec.body, spec.body_axes,
                              Tracker(config.tracking, AxisMapping(config.world, spec.body_axes)),
-                             TrackingState::unseen, 0, std::nullopt});
+                             TrackingState::unseen, 0, 0, BodyEstimate{}});
       it = std::prev(bodies_.end());
     }
     SenderConfig sc;
@@ -146,7 +146,15 @@ void Bridge::on_source_connection(bool connected) {
 }
 
 void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out) {
+  const bool restarted = last_capture_ && frame.capture_time < *last_capture_;
+  if (restarted) ++source_restarts_;
+  last_capture_ = frame.capture_time;
   for (Body& body : bodies_) {
+    if (restarted) {
+      body.reset_base =
+          static_cast<std::uint8_t>(body.reset_base + body.tracker.estimate().reset_counter + 1);
+      body.tracker = Tracker(config_.tracking, AxisMapping(config_.world, body.axes));
+    }
     const auto sample = std::find_if(frame.bodies.begin(), frame.bodies.end(),
                                      [&](const BodySample& s) { return s.name == body.name; });
     if (sample != frame.bodies.end()) {
@@ -154,8 +162,10 @@ void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out)
     } else {
       (void)body.tracker.on_missing(frame.capture_time);
     }
-    body.capture = capture;
-    const BodyEstimate& e = body.tracker.estimate();
+    body.published = body.tracker.estimate();
+    body.published.reset_counter =
+        static_cast<std::uint8_t>(body.published.reset_counter + body.reset_base);
+    const BodyEstimate& e = body.published;
     if (e.reset_counter != body.last_reset_counter) {
       body.last_reset_counter = e.reset_counter;
       out.events.push_back(
@@ -190,9 +200,8 @@ BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
   context.signing_now_10us = signing_now_10us(received);
   for (Vehicle& v : vehicles_) {
     if (!v.spec.enabled) continue;
-    v.sender.on_estimate(bodies_[v.body].tracker.estimate(), context, out.messages);
+    v.sender.on_estimate(bodies_[v.body].published, context, out.messages);
   }
-  last_time_ = received;
   return out;
 }
 
@@ -229,12 +238,11 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
   if (vehicle >= vehicles_.size()) return out;
   Vehicle& v = vehicles_[vehicle];
   const VehicleReaction reaction =
-      v.state.on_message(message, received, &bodies_[v.body].tracker.estimate());
+      v.state.on_message(message, received, &bodies_[v.body].published);
   if (reaction.timesync_reply && v.spec.enabled) {
     v.sender.send(*reaction.timesync_reply, received, signing_now_10us(received), out.messages);
   }
   vehicle_events(vehicle, reaction, received, out);
-  last_time_ = received;
   return out;
 }
 
@@ -255,7 +263,6 @@ BridgeOutput Bridge::on_tick(HostTime now) {
       if (ts != nullptr && ts->tc1 == 0) v.state.on_timesync_request_sent(ts->ts1);
     }
   }
-  last_time_ = now;
   return out;
 }
 
@@ -284,7 +291,8 @@ BridgeSnapshot Bridge::snapshot(HostTime now) const {
   s.origin = config_.origin;
   s.capture_offset = capture_mapper_.offset();
   s.bodies.reserve(bodies_.size());
-  for (const Body& b : bodies_) s.bodies.push_back({b.name, b.tracker.estimate()});
+  for (const Body& b : bodies_) s.bodies.push_back({b.name, b.published});
+  s.source_restarts = source_restarts_;
   s.vehicles.reserve(vehicles_.size());
   for (const Vehicle& v : vehicles_) {
     s.vehicles.push_back({v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled,

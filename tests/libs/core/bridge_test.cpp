@@ -178,6 +178,27 @@ TEST(BridgeFrames, LostBodyStopsPosesAndGpsReportsNoFix) {
   EXPECT_EQ(bridge.snapshot(received_at(160)).bodies[0].estimate.reset_counter, 1);
 }
 
+TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAsAReset) {
+  Bridge bridge = make_bridge(two_vehicles());
+  for (std::uint64_t n = 1; n <= 50; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
+  EXPECT_EQ(bridge.snapshot(received_at(50)).bodies[0].estimate.reset_counter, 0);
+  // The mocap server restarts: its clock (and frame numbers) start again from frame 1, 2 s later.
+  std::size_t odometry = 0;
+  std::uint8_t reset_counter = 0;
+  for (std::uint64_t n = 1; n <= 50; ++n) {
+    const BridgeOutput out = bridge.on_frame(frame_at(n, true, true), received_at(n) + seconds(2));
+    for (const auto& [v, o] : of_type<mavlink::Odometry>(out)) {
+      ++odometry;
+      reset_counter = o.reset_counter;
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(odometry), 25.0, 1.0);  // not refused as "time going back"
+  EXPECT_EQ(reset_counter, 1);                            // the vehicle sees a reset
+  const auto s = bridge.snapshot(received_at(50) + seconds(2));
+  EXPECT_EQ(s.source_restarts, 1U);
+  EXPECT_EQ(s.bodies[1].estimate.reset_counter, 1);
+}
+
 TEST(BridgeVehicles, TimesyncReplyOriginAndHeartbeats) {
   Bridge bridge = make_bridge(two_vehicles());
   // Tick at 100 s: a heartbeat per vehicle; SET_GPS_GLOBAL_ORIGIN only for the px4 vehicle.

@@ -14,6 +14,10 @@
 // times from one steady clock that never goes backwards, and sends what it returns. Call on_tick
 // about every 100 ms (heartbeat and origin cadence is exact to the tick period).
 //
+// A frame whose capture time is earlier than the previous frame's means the source restarted (its
+// clock started again): the Trackers are replaced (their filters hold the old clock's times) and
+// every body's reset_counter advances, so the vehicles treat the next pose as a reset.
+//
 // Per frame: every tracker gets its body's sample (on_sample), or on_missing when the body is not
 // in the frame; then each enabled vehicle's Sender sees its body's estimate. Vehicles whose body
 // is never seen send nothing but heartbeats (and GPS fix 0 only once the body was seen).
@@ -133,6 +137,7 @@ struct BridgeSnapshot {
   std::vector<VehicleStatus> vehicles;
   std::optional<GeodeticPosition> origin;
   std::optional<Duration> capture_offset;  ///< host − source clock offset (CaptureTimeMapper)
+  std::uint64_t source_restarts = 0;       ///< frames whose capture time went backwards
 };
 
 class Bridge {
@@ -174,7 +179,10 @@ class Bridge {
     Tracker tracker;
     TrackingState last_state = TrackingState::unseen;
     std::uint8_t last_reset_counter = 0;
-    std::optional<HostTime> capture;  ///< host capture time of the latest estimate
+    /// Added to the tracker's reset_counter: a source restart replaces the Tracker (its counter
+    /// starts at 0 again) and must still look like a reset to the vehicles (§6).
+    std::uint8_t reset_base = 0;
+    BodyEstimate published;  ///< tracker.estimate() with reset_base applied: what is sent
   };
   struct Vehicle {
     VehicleSpec spec;
@@ -199,7 +207,8 @@ class Bridge {
   std::vector<Body> bodies_;
   std::vector<Vehicle> vehicles_;
   std::optional<Duration> unix_minus_host_;
-  std::optional<HostTime> last_time_;
+  std::optional<SourceTime> last_capture_;
+  std::uint64_t source_restarts_ = 0;
 };
 
 }  // namespace mocaplink::core
