@@ -203,8 +203,10 @@ void Tracker::start(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
                     const Eigen::Quaterniond& q_ned_frd, bool keep_rates) {
   const Eigen::Vector3d v = keep_rates ? position_.v_mps() : Eigen::Vector3d::Zero();
   const Eigen::Vector3d w = keep_rates ? attitude_.w_frd_radps() : Eigen::Vector3d::Zero();
-  const Eigen::Quaterniond q =
-      initialised_ ? continuous_with(q_ned_frd, estimate_.q_ned_frd) : q_ned_frd.normalized();
+  // First start: the w >= 0 hemisphere; later resets: the hemisphere of the previous output, so
+  // the published attitude never jumps between q and -q.
+  const Eigen::Quaterniond q = continuous_with(
+      q_ned_frd, initialised_ ? estimate_.q_ned_frd : Eigen::Quaterniond::Identity());
   position_.initialise(p_ned_m, v, r_position_m2_, kInitialVelocityVar, kInitialAccelVar);
   attitude_.initialise(q, w, r_attitude_rad2_, kInitialRateVar);
   if (initialised_) {

@@ -167,5 +167,31 @@ TEST(AxisMapping, KeepsTheInputNorm) {
   EXPECT_EQ(bad.error().field, "body_up");
 }
 
+TEST(AxisMapping, DocsFramesWorkedExample) {
+  // docs/frames.md "Worked example": Vicon (up +z, north +x, FLU body) reports (1234.5, -678.9,
+  // 1500.0) mm and the x-first quaternion (0, 0, sin 15, cos 15): yawed 30 deg from mocap +x
+  // towards mocap +y. By hand: N = x, E = -y, D = -z; the nose points 30 deg west of north.
+  const auto m = AxisMapping::parse("+z", "+x", "+x", "+z");
+  ASSERT_TRUE(m.has_value());
+  const double s15 = std::sin(kPi / 12);
+  const double c15 = std::cos(kPi / 12);
+  const double vicon_xyzw[4] = {0.0, 0.0, s15, c15};
+  const Eigen::Quaterniond q_world_body(vicon_xyzw[3], vicon_xyzw[0], vicon_xyzw[1], vicon_xyzw[2]);
+  expect_vec(m->position_ned(Eigen::Vector3d(1234.5, -678.9, 1500.0) / 1000.0),
+             {1.2345, 0.6789, -1.5}, 1e-15);
+  // (0,1,0,0) * (c15,0,0,s15) * (0,1,0,0) = (-c15, 0, 0, s15), the same rotation as
+  // (c15, 0, 0, -s15): yaw -30 deg.
+  const Eigen::Quaterniond q = m->attitude_ned_frd(q_world_body);
+  EXPECT_NEAR(std::abs(q.w()), c15, 1e-15);
+  EXPECT_NEAR(q.z() / q.w(), -s15 / c15, 1e-15);
+  EXPECT_NEAR(q.x(), 0.0, 1e-15);
+  EXPECT_NEAR(q.y(), 0.0, 1e-15);
+  const Euler321 e = euler_321_from_quaternion(q);
+  EXPECT_NEAR(e.roll_rad, 0.0, 1e-15);
+  EXPECT_NEAR(e.pitch_rad, 0.0, 1e-15);
+  EXPECT_NEAR(e.yaw_rad, -kPi / 6, 1e-15);
+  expect_vec(q * Eigen::Vector3d::UnitX(), {std::sqrt(0.75), -0.5, 0.0}, 1e-15);
+}
+
 }  // namespace
 }  // namespace mocaplink::core

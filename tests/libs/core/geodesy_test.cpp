@@ -98,6 +98,18 @@ TEST(LocalGeodeticFrame, WrapsAcrossTheAntimeridian) {
   EXPECT_NEAR((ned - Eigen::Vector3d(0, 100, 0)).norm(), 0.0, 1e-8);
 }
 
+TEST(LocalGeodeticFrame, DocsFramesWorkedExample) {
+  // docs/frames.md "Worked example": NED (1.2345, 0.6789, -1.5) m at the Urbana origin. Oracle
+  // (PROJ 9.1.1): echo "0.6789 1.2345 1.5" | cct -d 12 -I +proj=pipeline +step +proj=cart
+  // +ellps=WGS84 +step +proj=topocentric +ellps=WGS84 +lat_0=40.1156786 +lon_0=-88.2243507
+  // +h_0=222.196   ->   -88.224342736602  40.115689717539  223.696000155061
+  const auto f = frame_at(40.1156786, -88.2243507, 222.196);
+  const GeodeticPosition p = f.geodetic_from_ned({1.2345, 0.6789, -1.5});
+  EXPECT_NEAR(p.latitude_deg, 40.115689717539, 1e-11);
+  EXPECT_NEAR(p.longitude_deg, -88.224342736602, 1e-11);
+  EXPECT_NEAR(p.altitude_m, 223.696000155061, 1e-6);
+}
+
 TEST(LocalGeodeticFrame, RoundTripsEverywhere) {
   for (const auto& o : {GeodeticPosition{40.1156786, -88.2243507, 222.196},
                         GeodeticPosition{-33.8688, 151.2093, 58}, GeodeticPosition{89, 10, 0},

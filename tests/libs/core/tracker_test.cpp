@@ -101,6 +101,9 @@ TEST(Tracker, MapsViconSamplesToNed) {
   EXPECT_EQ(t.on_sample(ms(0), s), SampleOutcome::initialised);
   EXPECT_NEAR((t.estimate().p_ned_m - Eigen::Vector3d(1.0, -2.0, -0.5)).norm(), 0.0, 1e-15);
   EXPECT_NEAR(euler_321_from_quaternion(t.estimate().q_ned_frd).yaw_rad, -kPi / 2, 1e-12);
+  // The mapping gives (-a, 0, 0, a) here; the Tracker starts in the w >= 0 hemisphere.
+  EXPECT_NEAR(t.estimate().q_ned_frd.w(), std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(t.estimate().q_ned_frd.z(), -std::sqrt(0.5), 1e-12);
   s.tracked = false;
   EXPECT_EQ(t.on_sample(ms(10), s), SampleOutcome::untracked);
   EXPECT_FALSE(t.estimate().pose_valid());

@@ -80,9 +80,10 @@ struct BodyEstimate {
   TrackingState state = TrackingState::unseen;
   SampleOutcome last_outcome = SampleOutcome::untracked;
 
-  Eigen::Vector3d p_ned_m = Eigen::Vector3d::Zero();              ///< position, local NED, m
-  Eigen::Vector3d v_ned_mps = Eigen::Vector3d::Zero();            ///< velocity, local NED, m/s
-  Eigen::Quaterniond q_ned_frd = Eigen::Quaterniond::Identity();  ///< unit, sign-continuous
+  Eigen::Vector3d p_ned_m = Eigen::Vector3d::Zero();    ///< position, local NED, m
+  Eigen::Vector3d v_ned_mps = Eigen::Vector3d::Zero();  ///< velocity, local NED, m/s
+  /// Unit; starts with w >= 0, then sign-continuous (never jumps to -q, so w may go negative).
+  Eigen::Quaterniond q_ned_frd = Eigen::Quaterniond::Identity();
   Eigen::Vector3d w_frd_radps = Eigen::Vector3d::Zero();  ///< body rates p, q, r about FRD axes
 
   /// Pose covariance, rows/cols x, y, z (NED, m^2) then roll, pitch, yaw (rad^2): the attitude
