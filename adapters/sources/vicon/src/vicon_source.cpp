@@ -230,7 +230,9 @@ class ViconSource::Session {
         send(packet_of(vw::RequestNextFrame{1}));
         break;
       case vw::StreamMode::client_pull:
-        schedule_pull(last_pull_ + period_);
+        // One request per frame period; a nonsense period from the server (hours) must not stall
+        // the stream, so never wait longer than the retry interval.
+        schedule_pull(last_pull_ + std::min<SteadyClock::duration>(period_, kPullRetry));
         break;
     }
     if (last_frame_id_ && *last_frame_id_ == decoded.frame_id) {
