@@ -1,11 +1,85 @@
-// Subcommands registered by add_config_commands (see commands.hpp). Nothing registered yet.
+// `mocaplink check FILE`: validates a configuration without running anything. Prints every error
+// (stderr, "FILE:LINE:COL: key: message") and exits 1, or prints a summary (stdout) and exits 0.
+// `run` joins this file with issue 5.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <string>
+
 #include "commands.hpp"
+#include "mocaplink/config/config_error.hpp"
+#include "mocaplink/config/load.hpp"
 
 namespace mocaplink::app {
+namespace {
+
+/// The whole file, or std::nullopt with `error` set to the system's reason.
+std::optional<std::string> read_file(const std::string& path, std::string& error) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) {
+    error = std::strerror(errno);
+    return std::nullopt;
+  }
+  std::string text;
+  char buffer[65536];
+  while (true) {
+    const std::size_t n = std::fread(buffer, 1, sizeof buffer, file.get());
+    text.append(buffer, n);
+    if (n < sizeof buffer) break;
+  }
+  if (std::ferror(file.get()) != 0) {
+    error = std::strerror(errno);
+    return std::nullopt;
+  }
+  return text;
+}
+
+void print_summary(const config::Config& cfg) {
+  const std::size_t n = cfg.vehicles.size();
+  std::printf("ok: %zu vehicle%s, source %s\n", n, n == 1 ? "" : "s",
+              cfg.mocap.source.text.c_str());
+  for (const auto& v : cfg.vehicles) {
+    std::printf("  %s: body %s, %s, system_id %u, profile %s, %g Hz%s%s\n", v.name.c_str(),
+                v.body.c_str(), config::to_string(v.link).c_str(),
+                static_cast<unsigned>(v.system_id), config::to_string(v.profile), v.rate_hz,
+                v.signing_key ? ", signed" : "", v.enabled ? "" : ", disabled");
+  }
+  std::printf("  dashboard: http://%s%s\n", config::to_string(cfg.http.listen).c_str(),
+              cfg.http.token.empty() ? "" : " (token required)");
+}
+
+int run_check(const std::string& path) {
+  std::string error;
+  const auto text = read_file(path, error);
+  if (!text) {
+    std::fprintf(stderr, "mocaplink check: cannot read %s: %s\n", path.c_str(), error.c_str());
+    return 1;
+  }
+  const auto result = config::parse_config(*text, path);
+  for (const auto& e : result.errors) std::fprintf(stderr, "%s\n", config::to_string(e).c_str());
+  for (const auto& warning : result.warnings) {
+    std::fprintf(stderr, "warning: %s\n", config::to_string(warning).c_str());
+  }
+  if (!result.ok()) {
+    const std::size_t n = result.errors.size();
+    std::fprintf(stderr, "%s: %zu error%s\n", path.c_str(), n, n == 1 ? "" : "s");
+    return 1;
+  }
+  print_summary(*result.config);
+  return 0;
+}
+
+}  // namespace
 
 void add_config_commands(CLI::App& app, ExitCode& exit_code) {
-  (void)app;
-  (void)exit_code;
+  auto* check = app.add_subcommand(
+      "check", "Validate a configuration file: every error with FILE:LINE:COL; exit 1 on errors");
+  auto path = std::make_shared<std::string>();
+  check->add_option("FILE", *path, "TOML configuration file")->required();
+  check->callback([path, &exit_code] { exit_code.value = run_check(*path); });
 }
 
 }  // namespace mocaplink::app

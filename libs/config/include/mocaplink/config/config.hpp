@@ -1,0 +1,89 @@
+// The typed, validated configuration of mocaplink (DESIGN.md "Configuration", docs/config.md).
+// A Config is only ever produced by parse_config / load_config / apply_overrides / demo_config,
+// which guarantee every documented range and cross-field rule; consumers need not re-check.
+// Thread-safety: plain value types.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mocaplink/config/axis.hpp"
+#include "mocaplink/config/link_url.hpp"
+#include "mocaplink/config/net_address.hpp"
+#include "mocaplink/config/profile.hpp"
+#include "mocaplink/config/source_url.hpp"
+
+namespace mocaplink::config {
+
+/// [mocap]: where poses come from and how the mocap world frame maps to NED.
+struct MocapSettings {
+  SourceUrl source;                 ///< required
+  Axis up = Axis::pos_z;            ///< mocap axis pointing up (Vicon/QTM: +z; Motive default: +y)
+  North north = Axis::pos_x;        ///< mocap axis or angle that becomes north; ⟂ up
+  Axis body_forward = Axis::pos_x;  ///< default rigid-body axis pointing out of the nose
+  Axis body_up = Axis::pos_z;       ///< default rigid-body axis pointing up when level; ⟂ forward
+};
+
+/// [origin]: the geodetic position of the mocap frame's origin (WGS84; altitude above mean sea
+/// level, as HIL_GPS / GPS_INPUT / SET_GPS_GLOBAL_ORIGIN carry it).
+struct Origin {
+  double latitude_deg = 0.0;   ///< −90 ≤ lat ≤ 90
+  double longitude_deg = 0.0;  ///< −180 ≤ lon ≤ 180
+  double altitude_m = 0.0;     ///< −1000 ≤ alt ≤ 10000, m AMSL
+};
+
+/// MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY: the bridge looks like a vision component of each vehicle
+/// (protocols/autopilots.md §9), never like the autopilot (component 1).
+inline constexpr std::uint8_t kDefaultComponentId = 197;
+inline constexpr double kDefaultRateHz = 50.0;
+inline constexpr double kMaxRateHz = 500.0;
+
+/// One [[vehicle]]: a mocap body whose poses go to one autopilot over one link.
+struct Vehicle {
+  std::string name;  ///< unique; 1..64 of [A-Za-z0-9_.-] (used in file names and URLs)
+  std::string body;  ///< rigid-body name in the mocap system (1..256 bytes, no control chars)
+  LinkUrl link;
+  std::uint8_t system_id = 1;  ///< 1..255, unique per link; also the source sysid we send with
+  std::uint8_t component_id = kDefaultComponentId;  ///< 2..255 (1 is the autopilot itself)
+  Profile profile = Profile::px4;
+  std::vector<MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
+  double rate_hz = kDefaultRateHz;    ///< 0 < rate ≤ 500; pose messages per second
+  std::optional<std::array<std::uint8_t, 32>> signing_key;  ///< MAVLink 2 signing secret
+  Axis body_forward = Axis::pos_x;  ///< resolved: the vehicle's override or [mocap]'s default
+  Axis body_up = Axis::pos_z;       ///< resolved likewise; ⟂ body_forward
+  bool enabled = true;              ///< false: configured but nothing is sent
+};
+
+/// [tracking]: optional tuning of the per-body tracker. Every value is std::nullopt unless the
+/// file sets it; the core owns the defaults. Ranges are sanity bounds checked here.
+struct TrackingSettings {
+  std::optional<double> loss_timeout_ms;             ///< 0 < v ≤ 60000
+  std::optional<double> reset_after_ms;              ///< 0 ≤ v ≤ 600000
+  std::optional<double> position_noise_m;            ///< 0 < v ≤ 10
+  std::optional<double> attitude_noise_rad;          ///< 0 < v ≤ π
+  std::optional<double> accel_noise_mps2;            ///< 0 < v ≤ 1000
+  std::optional<double> angular_accel_noise_radps2;  ///< 0 < v ≤ 10000
+  std::optional<double> gate_sigma;                  ///< 0 < v ≤ 100
+  std::optional<double> gate_min_m;                  ///< 0 ≤ v ≤ 100
+  std::optional<std::uint32_t> jump_confirm_frames;  ///< 1 ≤ v ≤ 1000
+};
+
+/// [http]: the dashboard / REST API.
+struct HttpSettings {
+  HostPort listen{"127.0.0.1", 8080};  ///< port 0 = any free port (tests)
+  std::string token;  ///< "" or ≥ 16 characters; required when listen is not loopback
+};
+
+struct Config {
+  MocapSettings mocap;
+  std::optional<Origin>
+      origin;  ///< required by px4-gps, ardupilot-gps, classic, hil_gps, gps_input
+  std::vector<Vehicle> vehicles;
+  TrackingSettings tracking;
+  HttpSettings http;
+};
+
+}  // namespace mocaplink::config

@@ -1,0 +1,52 @@
+// Entry points: TOML text (+ command-line overrides) → validated Config, every problem at once.
+// Pure: the caller reads the file and passes its text and display name.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mocaplink/config/config.hpp"
+#include "mocaplink/config/config_error.hpp"
+
+namespace mocaplink::config {
+
+/// The outcome of building a Config. `config` is set exactly when `errors` is empty. Errors are
+/// sorted by file position (file errors first, then command-line errors in option order).
+/// Warnings never prevent a Config (e.g. two vehicles sharing one link).
+struct [[nodiscard]] ConfigResult {
+  std::optional<Config> config;
+  std::vector<ConfigError> errors;
+  std::vector<ConfigError> warnings;
+  [[nodiscard]] bool ok() const { return config.has_value(); }
+};
+
+/// The raw command-line options of `mocaplink run` that change a configuration.
+struct CommandLineOverrides {
+  std::optional<std::string> source;  ///< --source URL: replaces [mocap] source
+  std::optional<std::string> http;    ///< --http ADDR: replaces [http] listen
+  /// --vehicle SPEC, in command-line order: "NAME:key=value,key=value,...". Keys are those of
+  /// [[vehicle]] except name; `messages` joins its entries with '+' ("odometry+hil_gps"); values
+  /// cannot contain ','. An existing NAME has the given keys replaced; a new NAME is added and
+  /// needs every required key.
+  std::vector<std::string> vehicles;
+};
+
+/// Parses and validates a TOML configuration. `filename` is only used in error locations.
+/// Never throws for bad input; the TOML parser stops at the first syntax error, so a file with a
+/// syntax error reports that one error.
+ConfigResult parse_config(std::string_view toml_text, std::string_view filename);
+
+/// parse_config, then the command-line overrides, then validation of the combination: a file
+/// without [mocap] source is fine when `overrides.source` is set. Errors from options name the
+/// option ("--vehicle 2: rate_hz: ...").
+ConfigResult load_config(std::string_view toml_text, std::string_view filename,
+                         const CommandLineOverrides& overrides);
+
+/// Applies command-line overrides to an existing valid Config (e.g. demo_config() when no file is
+/// given). Cross-checks that involve base vehicles name them as coming from `base_name`.
+ConfigResult apply_overrides(const Config& base, const CommandLineOverrides& overrides,
+                             std::string_view base_name = "built-in demo");
+
+}  // namespace mocaplink::config

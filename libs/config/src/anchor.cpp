@@ -1,2 +1,0 @@
-// Anchors the config target until its sources land (issue 5). Delete when config.cpp exists.
-namespace mocaplink::config {}

@@ -1,0 +1,246 @@
+// ConfigDraft → Config: required keys, defaults, and the rules that involve several keys
+// (axes at right angles, messages vs profile, origin for GPS messages, unique names, unique
+// system ids per link, the dashboard token). Every problem is reported; none stops the others.
+#include <algorithm>
+#include <string>
+
+#include "draft.hpp"
+#include "text_util.hpp"
+
+namespace mocaplink::config::detail {
+namespace {
+
+constexpr const char* kMissing = "missing required key";
+
+/// The value of a field, or `fallback` when it was not given.
+template <typename T>
+T value_or(const Field<T>& field, T fallback) {
+  return field.value.value_or(std::move(fallback));
+}
+
+bool contains(const std::vector<std::string>& keys, std::string_view key) {
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+/// Reports a required field that was not given (given-but-invalid ones are already reported).
+/// `name` is the bare key as in `mistyped`, `key` the displayed path.
+template <typename T>
+bool require(const Field<T>& field, const std::vector<std::string>& mistyped, std::string_view name,
+             const Where& where, const std::string& key, Diagnostics& diagnostics) {
+  if (field.present) return field.value.has_value();
+  if (!contains(mistyped, name)) diagnostics.error(where, key, kMissing);
+  return false;
+}
+
+/// One axis-valued key as used by a right-angle rule: its effective value and where it was
+/// written (or the table it defaults in).
+struct AxisUse {
+  Axis axis = Axis::pos_x;
+  bool written = false;
+  bool invalid = false;  ///< written with a bad value: already reported, skip the rule
+  Where where;
+  std::string key;
+  std::string name;
+};
+
+template <typename T>
+AxisUse axis_use(const Field<T>& field, Axis effective, std::string name, const Where& table,
+                 const std::string& default_key) {
+  return AxisUse{effective,
+                 field.present,
+                 field.present && !field.value,
+                 field.present ? field.where : table,
+                 field.present ? field.key : default_key,
+                 std::move(name)};
+}
+
+/// Checks that two axes are at right angles; the error goes to the one that was written (the
+/// second if both were) and names both.
+void check_perpendicular(const AxisUse& a, const AxisUse& b, Diagnostics& diagnostics) {
+  if (a.invalid || b.invalid || are_perpendicular(a.axis, b.axis)) return;
+  const AxisUse& blamed = (b.written || !a.written) ? b : a;
+  diagnostics.error(blamed.where, blamed.key,
+                    b.name + " (" + to_string(b.axis) + ") must be at right angles to " + a.name +
+                        " (" + to_string(a.axis) + ")");
+}
+
+MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
+  MocapSettings mocap;
+  const Where table = d.mocap_header.value_or(d.document);
+  if (require(d.source, d.mistyped, "source", table, "mocap.source", diagnostics))
+    mocap.source = *d.source.value;
+  mocap.up = value_or(d.up, Axis::pos_z);
+  mocap.north = value_or(d.north, North{Axis::pos_x});
+  mocap.body_forward = value_or(d.body_forward, Axis::pos_x);
+  mocap.body_up = value_or(d.body_up, Axis::pos_z);
+  if (const auto* north_axis = std::get_if<Axis>(&mocap.north)) {
+    check_perpendicular(axis_use(d.up, mocap.up, "up", table, "mocap.up"),
+                        axis_use(d.north, *north_axis, "north", table, "mocap.north"), diagnostics);
+  }
+  check_perpendicular(
+      axis_use(d.body_forward, mocap.body_forward, "body_forward", table, "mocap.body_forward"),
+      axis_use(d.body_up, mocap.body_up, "body_up", table, "mocap.body_up"), diagnostics);
+  if (mocap.source.kind == SourceKind::natnet && !d.up.present && d.source.value) {
+    diagnostics.warning(d.source.where, d.source.key.empty() ? "mocap.source" : d.source.key,
+                        "Motive streams Y-up unless its Up Axis setting is Z; set [mocap] up "
+                        "(and body_up) to \"+y\" if yours does");
+  }
+  return mocap;
+}
+
+std::optional<Origin> finalize_origin(const ConfigDraft& d, Diagnostics& diagnostics) {
+  if (!d.origin_header) return std::nullopt;
+  const bool lat = require(d.latitude_deg, d.mistyped, "latitude_deg", *d.origin_header,
+                           "origin.latitude_deg", diagnostics);
+  const bool lon = require(d.longitude_deg, d.mistyped, "longitude_deg", *d.origin_header,
+                           "origin.longitude_deg", diagnostics);
+  const bool alt = require(d.altitude_m, d.mistyped, "altitude_m", *d.origin_header,
+                           "origin.altitude_m", diagnostics);
+  if (!lat || !lon || !alt) return std::nullopt;
+  return Origin{*d.latitude_deg.value, *d.longitude_deg.value, *d.altitude_m.value};
+}
+
+std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft& d,
+                                        const MocapSettings& mocap, bool have_origin,
+                                        Diagnostics& diagnostics) {
+  const auto key = [&](const char* name) { return v.prefix + name; };
+  bool ok = require(v.name, v.mistyped, "name", v.header, key("name"), diagnostics);
+  ok = require(v.body, v.mistyped, "body", v.header, key("body"), diagnostics) && ok;
+  ok = require(v.link, v.mistyped, "link", v.header, key("link"), diagnostics) && ok;
+  ok = require(v.system_id, v.mistyped, "system_id", v.header, key("system_id"), diagnostics) && ok;
+  ok = require(v.profile, v.mistyped, "profile", v.header, key("profile"), diagnostics) && ok;
+  Vehicle out;
+  out.profile = value_or(v.profile, Profile::px4);
+  if (v.profile.value) {
+    const bool custom = out.profile == Profile::custom;
+    if (!custom && v.messages.present) {
+      diagnostics.error(
+          v.messages.where, v.messages.key,
+          std::string("messages is only allowed with profile = \"custom\"; profile \"") +
+              to_string(out.profile) + "\" sends a fixed set");
+      ok = false;
+    } else if (custom && v.messages.present && v.messages.value && v.messages.value->empty()) {
+      diagnostics.error(v.messages.where, v.messages.key,
+                        "profile \"custom\" needs at least one message");
+      ok = false;
+    } else if (custom && !v.messages.present && !contains(v.mistyped, "messages")) {
+      diagnostics.error(v.profile.where, key("messages"),
+                        "profile \"custom\" needs a messages list, e.g. "
+                        "messages = [\"odometry\"]");
+      ok = false;
+    }
+  }
+  out.messages = value_or(v.messages, std::vector<MessageKind>{});
+  const bool gps = (v.profile.value && needs_origin(out.profile)) ||
+                   std::any_of(out.messages.begin(), out.messages.end(),
+                               [](MessageKind m) { return needs_origin(m); });
+  if (gps && !have_origin && !d.origin_header) {
+    const bool by_profile = out.profile != Profile::custom;
+    const auto& where = by_profile ? v.profile.where : v.messages.where;
+    diagnostics.error(where, by_profile ? v.profile.key : v.messages.key,
+                      "GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin] table "
+                      "(latitude_deg, longitude_deg, altitude_m)");
+    ok = false;
+  }
+  out.body_forward = value_or(v.body_forward, mocap.body_forward);
+  out.body_up = value_or(v.body_up, mocap.body_up);
+  if (v.body_forward.present || v.body_up.present) {
+    check_perpendicular(
+        axis_use(v.body_forward, out.body_forward, "body_forward", v.header, key("body_forward")),
+        axis_use(v.body_up, out.body_up, "body_up", v.header, key("body_up")), diagnostics);
+  }
+  if (!ok) return std::nullopt;
+  out.name = *v.name.value;
+  out.body = *v.body.value;
+  out.link = *v.link.value;
+  out.system_id = *v.system_id.value;
+  out.component_id = value_or(v.component_id, kDefaultComponentId);
+  out.rate_hz = value_or(v.rate_hz, kDefaultRateHz);
+  out.signing_key = value_or(v.signing_key, std::optional<std::array<std::uint8_t, 32>>{});
+  out.enabled = value_or(v.enabled, true);
+  if (out.system_id == 255) {
+    diagnostics.warning(v.system_id.where, v.system_id.key,
+                        "255 is the usual ground-station system id; a vehicle using it can mask "
+                        "the GCS (protocols/autopilots.md §11.13)");
+  }
+  if (out.profile == Profile::ardupilot && out.rate_hz > 50.0) {
+    diagnostics.warning(v.rate_hz.where, v.rate_hz.key,
+                        "ArduPilot's external-navigation input is meant for at most 50 Hz");
+  }
+  return out;
+}
+
+/// Unique names; unique system ids per link; a warning for links shared between vehicles.
+void cross_check_vehicles(const ConfigDraft& d, Diagnostics& diagnostics) {
+  for (std::size_t i = 0; i < d.vehicles.size(); ++i) {
+    const auto& v = d.vehicles[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      const auto& first = d.vehicles[j];
+      if (v.name.value && first.name.value && *v.name.value == *first.name.value) {
+        diagnostics.error(v.name.where, v.name.key,
+                          "duplicate vehicle name " + quoted(*v.name.value) +
+                              " (first defined at " + describe(first.name.where) + ")");
+        break;
+      }
+    }
+    if (!v.link.value) continue;
+    bool shared_warned = false;
+    for (std::size_t j = 0; j < i; ++j) {
+      const auto& first = d.vehicles[j];
+      if (!first.link.value || *first.link.value != *v.link.value) continue;
+      const std::string first_name = first.name.value.value_or("?");
+      if (v.system_id.value && first.system_id.value &&
+          *v.system_id.value == *first.system_id.value) {
+        diagnostics.error(v.system_id.where, v.system_id.key,
+                          "system_id " + std::to_string(*v.system_id.value) +
+                              " is already used on " + to_string(*v.link.value) + " by vehicle " +
+                              quoted(first_name) + " (" + describe(first.system_id.where) + ")");
+      } else if (!shared_warned) {
+        diagnostics.warning(v.link.where, v.link.key,
+                            "link " + to_string(*v.link.value) + " is shared with vehicle " +
+                                quoted(first_name) + " (" + describe(first.link.where) +
+                                "): pose messages have no target system, so every vehicle on it "
+                                "fuses every pose unless a router filters by system id");
+        shared_warned = true;
+      }
+    }
+  }
+}
+
+HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
+  HttpSettings http;
+  if (d.listen.value) http.listen = *d.listen.value;
+  if (d.token.value) http.token = *d.token.value;
+  if (d.listen.value && !is_loopback(http.listen.host) && http.token.empty() &&
+      (!d.token.present || d.token.value)) {
+    diagnostics.error(d.listen.where, d.listen.key,
+                      to_string(http.listen) +
+                          " is reachable from the network, so [http] token is required (16 or "
+                          "more characters); every mutating request must carry it");
+  }
+  return http;
+}
+
+}  // namespace
+
+std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
+  Config config;
+  config.mocap = finalize_mocap(d, diagnostics);
+  config.origin = finalize_origin(d, diagnostics);
+  for (const auto& vehicle : d.vehicles) {
+    if (auto v =
+            finalize_vehicle(vehicle, d, config.mocap, config.origin.has_value(), diagnostics)) {
+      config.vehicles.push_back(std::move(*v));
+    }
+  }
+  cross_check_vehicles(d, diagnostics);
+  config.tracking = d.tracking;
+  config.http = finalize_http(d, diagnostics);
+  if (d.vehicles.empty()) {
+    diagnostics.warning(d.document, "vehicle", "no [[vehicle]] tables: nothing will be sent");
+  }
+  if (!diagnostics.errors.empty()) return std::nullopt;
+  return config;
+}
+
+}  // namespace mocaplink::config::detail

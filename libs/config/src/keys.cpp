@@ -1,0 +1,331 @@
+// The schema of every table: key names, types, ranges and value parsers. docs/config.md documents
+// the same table for users; keep them in step.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "draft.hpp"
+#include "text_util.hpp"
+
+namespace mocaplink::config::detail {
+namespace {
+
+template <typename T>
+void assign(Field<T>& field, const Value& value, ValueOrError<T> parsed, Diagnostics& diagnostics) {
+  field.present = true;
+  field.where = value.where;
+  field.key = value.key;
+  field.value.reset();
+  if (parsed) {
+    field.value = std::move(parsed).value();
+  } else {
+    diagnostics.error(value.where, value.key, parsed.error());
+  }
+}
+
+/// Inclusive range check on a number; the bounds appear in the message.
+ValueOrError<double> number_in(double v, double low, double high, bool low_inclusive = true) {
+  const bool ok = std::isfinite(v) && (low_inclusive ? v >= low : v > low) && v <= high;
+  if (ok) return v;
+  return ValueOrError<double>::failure(std::string("must be ") +
+                                       (low_inclusive ? "from " : "above ") + format_number(low) +
+                                       (low_inclusive ? " to " : " and at most ") +
+                                       format_number(high) + ", got " + format_number(v));
+}
+
+ValueOrError<std::uint8_t> byte_in(std::int64_t v, std::int64_t low) {
+  if (v >= low && v <= 255) return static_cast<std::uint8_t>(v);
+  return ValueOrError<std::uint8_t>::failure("must be an integer from " + std::to_string(low) +
+                                             " to 255, got " + std::to_string(v));
+}
+
+void set_optional(std::optional<double>& slot, const Value& value, ValueOrError<double> parsed,
+                  Diagnostics& diagnostics) {
+  if (parsed) {
+    slot = parsed.value();
+  } else {
+    slot.reset();
+    diagnostics.error(value.where, value.key, parsed.error());
+  }
+}
+
+// ---- [mocap] ----
+
+void mocap_source(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.source, v, parse_source_url(v.text()), diag);
+}
+void mocap_up(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.up, v, parse_axis(v.text()), diag);
+}
+void mocap_north(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.north, v, parse_north(v.text()), diag);
+}
+void mocap_body_forward(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.body_forward, v, parse_axis(v.text()), diag);
+}
+void mocap_body_up(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.body_up, v, parse_axis(v.text()), diag);
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 5> kMocapKeys = {{
+    {"source", ValueType::string, mocap_source},
+    {"up", ValueType::string, mocap_up},
+    {"north", ValueType::string, mocap_north},
+    {"body_forward", ValueType::string, mocap_body_forward},
+    {"body_up", ValueType::string, mocap_body_up},
+}};
+
+// ---- [origin] ----
+
+void origin_latitude(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.latitude_deg, v, number_in(v.number(), -90.0, 90.0), diag);
+}
+void origin_longitude(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.longitude_deg, v, number_in(v.number(), -180.0, 180.0), diag);
+}
+void origin_altitude(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  // Dead Sea shore to well above any lab; catches feet-for-metres and mm-for-metres slips.
+  assign(d.altitude_m, v, number_in(v.number(), -1000.0, 10000.0), diag);
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 3> kOriginKeys = {{
+    {"latitude_deg", ValueType::number, origin_latitude},
+    {"longitude_deg", ValueType::number, origin_longitude},
+    {"altitude_m", ValueType::number, origin_altitude},
+}};
+
+// ---- [tracking] (sanity bounds only; the core owns the defaults) ----
+
+void tracking_loss(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.loss_timeout_ms, v, number_in(v.number(), 0.0, 60000.0, false), diag);
+}
+void tracking_reset(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.reset_after_ms, v, number_in(v.number(), 0.0, 600000.0), diag);
+}
+void tracking_position_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.position_noise_m, v, number_in(v.number(), 0.0, 10.0, false), diag);
+}
+void tracking_attitude_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.attitude_noise_rad, v,
+               number_in(v.number(), 0.0, std::numbers::pi, false), diag);
+}
+void tracking_accel_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.accel_noise_mps2, v, number_in(v.number(), 0.0, 1000.0, false), diag);
+}
+void tracking_angular_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.angular_accel_noise_radps2, v, number_in(v.number(), 0.0, 10000.0, false),
+               diag);
+}
+void tracking_gate_sigma(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.gate_sigma, v, number_in(v.number(), 0.0, 100.0, false), diag);
+}
+void tracking_gate_min(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d.tracking.gate_min_m, v, number_in(v.number(), 0.0, 100.0), diag);
+}
+void tracking_jump_frames(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  if (v.integer() >= 1 && v.integer() <= 1000) {
+    d.tracking.jump_confirm_frames = static_cast<std::uint32_t>(v.integer());
+  } else {
+    d.tracking.jump_confirm_frames.reset();
+    diag.error(v.where, v.key,
+               "must be an integer from 1 to 1000, got " + std::to_string(v.integer()));
+  }
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 9> kTrackingKeys = {{
+    {"loss_timeout_ms", ValueType::number, tracking_loss},
+    {"reset_after_ms", ValueType::number, tracking_reset},
+    {"position_noise_m", ValueType::number, tracking_position_noise},
+    {"attitude_noise_rad", ValueType::number, tracking_attitude_noise},
+    {"accel_noise_mps2", ValueType::number, tracking_accel_noise},
+    {"angular_accel_noise_radps2", ValueType::number, tracking_angular_noise},
+    {"gate_sigma", ValueType::number, tracking_gate_sigma},
+    {"gate_min_m", ValueType::number, tracking_gate_min},
+    {"jump_confirm_frames", ValueType::integer, tracking_jump_frames},
+}};
+
+// ---- [http] ----
+
+void http_listen(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.listen, v, parse_host_port(v.text(), HostPortRules{.port_zero_ok = true}), diag);
+}
+void http_token(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  // Never echo the token. 16 characters keep a guessing attack over HTTP impractical.
+  ValueOrError<std::string> parsed = v.text();
+  if (!v.text().empty() && v.text().size() < 16) {
+    parsed = ValueOrError<std::string>::failure("must be empty or at least 16 characters, got " +
+                                                std::to_string(v.text().size()));
+  }
+  assign(d.token, v, std::move(parsed), diag);
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 2> kHttpKeys = {{
+    {"listen", ValueType::string, http_listen},
+    {"token", ValueType::string, http_token},
+}};
+
+// ---- [[vehicle]] ----
+
+ValueOrError<std::string> parse_name(const std::string& text) {
+  const bool ok =
+      !text.empty() && text.size() <= 64 && std::all_of(text.begin(), text.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+               c == '_' || c == '-' || c == '.';
+      });
+  if (ok) return text;
+  return ValueOrError<std::string>::failure(
+      "must be 1 to 64 letters, digits, '_', '-' or '.', got " + quoted(text));
+}
+
+ValueOrError<std::string> parse_body(const std::string& text) {
+  const bool controls = std::any_of(text.begin(), text.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  if (!text.empty() && text.size() <= 256 && !controls) return text;
+  return ValueOrError<std::string>::failure(
+      "must be the rigid-body name as the mocap system spells it (1 to 256 characters, no "
+      "control characters), got " +
+      quoted(text));
+}
+
+ValueOrError<std::vector<MessageKind>> parse_messages(const std::vector<std::string>& names) {
+  std::vector<MessageKind> out;
+  for (const auto& name : names) {
+    auto kind = parse_message_kind(name);
+    if (!kind) return ValueOrError<std::vector<MessageKind>>::failure(kind.error());
+    if (std::find(out.begin(), out.end(), kind.value()) != out.end()) {
+      return ValueOrError<std::vector<MessageKind>>::failure(quoted(name) + " is listed twice");
+    }
+    out.push_back(kind.value());
+  }
+  return out;
+}
+
+using SigningKey = std::optional<std::array<std::uint8_t, 32>>;
+
+ValueOrError<SigningKey> parse_signing_key(const std::string& text) {
+  if (text.empty()) return SigningKey{};
+  const auto nibble = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  const bool hex = std::all_of(text.begin(), text.end(), [&](char c) { return nibble(c) >= 0; });
+  if (text.size() != 64 || !hex) {
+    // The key is a secret: describe it, never print it.
+    return ValueOrError<SigningKey>::failure(
+        "must be 64 hexadecimal characters (a 32-byte secret) or \"\" for unsigned, got " +
+        std::to_string(text.size()) + " characters" + (hex ? "" : " including non-hex ones"));
+  }
+  std::array<std::uint8_t, 32> key{};
+  for (std::size_t i = 0; i < key.size(); ++i) {
+    key[i] = static_cast<std::uint8_t>(nibble(text[2 * i]) * 16 + nibble(text[2 * i + 1]));
+  }
+  return SigningKey{key};
+}
+
+void vehicle_name(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.name, v, parse_name(v.text()), diag);
+}
+void vehicle_body(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.body, v, parse_body(v.text()), diag);
+}
+void vehicle_link(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.link, v, parse_link_url(v.text()), diag);
+}
+void vehicle_system_id(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.system_id, v, byte_in(v.integer(), 1), diag);
+}
+void vehicle_component_id(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  auto parsed = byte_in(v.integer(), 1);
+  if (parsed && parsed.value() == 1) {
+    parsed = ValueOrError<std::uint8_t>::failure(
+        "1 is the autopilot itself (MAV_COMP_ID_AUTOPILOT1); use another id, normally 197");
+  }
+  assign(d.component_id, v, std::move(parsed), diag);
+}
+void vehicle_profile(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.profile, v, parse_profile(v.text()), diag);
+}
+void vehicle_messages(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.messages, v, parse_messages(v.list()), diag);
+}
+void vehicle_rate(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.rate_hz, v, number_in(v.number(), 0.0, kMaxRateHz, false), diag);
+}
+void vehicle_signing_key(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.signing_key, v, parse_signing_key(v.text()), diag);
+}
+void vehicle_body_forward(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.body_forward, v, parse_axis(v.text()), diag);
+}
+void vehicle_body_up(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.body_up, v, parse_axis(v.text()), diag);
+}
+void vehicle_enabled(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.enabled, v, ValueOrError<bool>(v.boolean()), diag);
+}
+
+constexpr std::array<KeySpec<VehicleDraft>, 12> kVehicleKeys = {{
+    {"name", ValueType::string, vehicle_name},
+    {"body", ValueType::string, vehicle_body},
+    {"link", ValueType::string, vehicle_link},
+    {"system_id", ValueType::integer, vehicle_system_id},
+    {"component_id", ValueType::integer, vehicle_component_id},
+    {"profile", ValueType::string, vehicle_profile},
+    {"messages", ValueType::string_list, vehicle_messages},
+    {"rate_hz", ValueType::number, vehicle_rate},
+    {"signing_key", ValueType::string, vehicle_signing_key},
+    {"body_forward", ValueType::string, vehicle_body_forward},
+    {"body_up", ValueType::string, vehicle_body_up},
+    {"enabled", ValueType::boolean, vehicle_enabled},
+}};
+
+template <typename Spec, std::size_t N>
+bool has_key(const std::array<Spec, N>& specs, std::string_view key) {
+  return std::any_of(specs.begin(), specs.end(), [&](const Spec& s) { return s.name == key; });
+}
+
+}  // namespace
+
+std::span<const KeySpec<ConfigDraft>> mocap_keys() {
+  return kMocapKeys;
+}
+std::span<const KeySpec<ConfigDraft>> origin_keys() {
+  return kOriginKeys;
+}
+std::span<const KeySpec<ConfigDraft>> tracking_keys() {
+  return kTrackingKeys;
+}
+std::span<const KeySpec<ConfigDraft>> http_keys() {
+  return kHttpKeys;
+}
+std::span<const KeySpec<VehicleDraft>> vehicle_keys() {
+  return kVehicleKeys;
+}
+
+std::string unknown_key_message(std::string_view key, std::span<const std::string_view> here) {
+  if (auto suggestion = did_you_mean(key, here); !suggestion.empty()) {
+    return "unknown key" + suggestion;
+  }
+  struct Home {
+    std::string_view table;
+    bool found;
+  };
+  const std::array<Home, 5> homes = {{
+      {"[mocap]", has_key(kMocapKeys, key)},
+      {"[origin]", has_key(kOriginKeys, key)},
+      {"[[vehicle]]", has_key(kVehicleKeys, key)},
+      {"[tracking]", has_key(kTrackingKeys, key)},
+      {"[http]", has_key(kHttpKeys, key)},
+  }};
+  for (const auto& home : homes) {
+    if (home.found) return "unknown key here; it belongs in " + std::string(home.table);
+  }
+  return "unknown key (allowed here: " + join(here) + ")";
+}
+
+}  // namespace mocaplink::config::detail

@@ -1,0 +1,122 @@
+#include "mocaplink/config/link_url.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "text_util.hpp"
+#include "url_util.hpp"
+
+namespace mocaplink::config {
+namespace {
+
+constexpr std::array<std::string_view, 3> kSchemes = {"udp", "tcp", "serial"};
+constexpr std::string_view kForms =
+    "udp://HOST:PORT, tcp://HOST:PORT or serial:///dev/DEVICE?baud=N";
+
+// The rates Linux termios can set without termios2 (B9600 ... B4000000): the io adapter maps
+// these to Bxxx constants, so any other number could not be honoured.
+constexpr std::array<std::uint32_t, 18> kBaudRates = {
+    9600,   19200,   38400,   57600,   115200,  230400,  460800,  500000,  576000,
+    921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
+
+using Result = ValueOrError<LinkUrl>;
+
+bool is_broadcast_or_multicast(const std::string& host) {
+  // IPv6 multicast is ff00::/8.
+  if (host.find(':') != std::string::npos) return host.rfind("ff", 0) == 0;
+  if (!is_ipv4_literal(host)) return false;
+  if (host == "255.255.255.255") return true;
+  const auto first_octet = detail::parse_integer(host.substr(0, host.find('.'))).value_or(0);
+  return first_octet >= 224 && first_octet <= 239;
+}
+
+Result parse_network(LinkKind kind, const detail::UrlParts& parts) {
+  if (auto error = detail::check_query_keys(parts, {}, std::string(to_string(kind)) + "://");
+      !error.empty()) {
+    return Result::failure(error);
+  }
+  if (parts.body.find('/') != std::string_view::npos) {
+    return Result::failure(std::string(to_string(kind)) + ":// takes HOST:PORT only, got " +
+                           detail::quoted(parts.body));
+  }
+  auto address = parse_host_port(parts.body, HostPortRules{});
+  if (!address) return Result::failure(address.error());
+  if (is_broadcast_or_multicast(address.value().host)) {
+    return Result::failure(
+        "broadcast and multicast addresses are not allowed: pose messages have no target system, "
+        "so every vehicle listening would fuse them; give each vehicle its own unicast address");
+  }
+  LinkUrl link;
+  link.kind = kind;
+  link.address = std::move(address).value();
+  return link;
+}
+
+Result parse_serial(const detail::UrlParts& parts) {
+  constexpr std::array<std::string_view, 1> kKeys = {"baud"};
+  if (auto error = detail::check_query_keys(parts, kKeys, "serial://"); !error.empty()) {
+    return Result::failure(error);
+  }
+  const auto device = parts.body;
+  if (device.size() < 2 || device.front() != '/' || device.back() == '/') {
+    return Result::failure(
+        "serial device must be an absolute path, as in "
+        "serial:///dev/ttyUSB0?baud=921600, got " +
+        detail::quoted(device));
+  }
+  if (std::any_of(device.begin(), device.end(),
+                  [](char c) { return static_cast<unsigned char>(c) <= 0x20; })) {
+    return Result::failure("serial device path contains a space or control character");
+  }
+  LinkUrl link;
+  link.kind = LinkKind::serial;
+  link.device = std::string(device);
+  link.baud = kDefaultSerialBaud;
+  for (const auto& [key, value] : parts.query) {
+    const auto baud = detail::parse_integer(value);
+    const bool standard =
+        baud && std::find(kBaudRates.begin(), kBaudRates.end(), *baud) != kBaudRates.end();
+    if (!standard) {
+      return Result::failure(
+          "baud must be a standard rate (9600, 19200, 38400, 57600, 115200, "
+          "230400, 460800, 500000, 576000, 921600, 1000000, 1152000, 1500000, "
+          "2000000, 2500000, 3000000, 3500000, 4000000), got " +
+          detail::quoted(value));
+    }
+    link.baud = static_cast<std::uint32_t>(*baud);
+  }
+  return link;
+}
+
+}  // namespace
+
+const char* to_string(LinkKind kind) {
+  return kSchemes.at(static_cast<std::size_t>(kind)).data();
+}
+
+ValueOrError<LinkUrl> parse_link_url(std::string_view text) {
+  auto parts = detail::split_url(text);
+  if (!parts) {
+    if (text.find("://") == std::string_view::npos) {
+      return Result::failure("expected " + std::string(kForms) + ", got " + detail::quoted(text));
+    }
+    return Result::failure(parts.error());
+  }
+  const auto& p = parts.value();
+  if (p.scheme == "udp") return parse_network(LinkKind::udp, p);
+  if (p.scheme == "tcp") return parse_network(LinkKind::tcp, p);
+  if (p.scheme == "serial") return parse_serial(p);
+  return Result::failure("unknown link scheme " + detail::quoted(p.scheme) +
+                         detail::did_you_mean(p.scheme, kSchemes) + " (expected " +
+                         std::string(kForms) + ")");
+}
+
+std::string to_string(const LinkUrl& link) {
+  if (link.kind == LinkKind::serial) {
+    return "serial://" + link.device + "?baud=" + std::to_string(link.baud);
+  }
+  return std::string(to_string(link.kind)) + "://" + to_string(link.address);
+}
+
+}  // namespace mocaplink::config

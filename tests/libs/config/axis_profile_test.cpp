@@ -1,0 +1,75 @@
+// Axis, north and profile spellings (docs/config.md "[mocap]", "[[vehicle]]").
+#include <gtest/gtest.h>
+
+#include "mocaplink/config/axis.hpp"
+#include "mocaplink/config/profile.hpp"
+
+namespace mocaplink::config {
+namespace {
+
+TEST(Axis, RoundTripsEverySpelling) {
+  for (const char* name : {"+x", "-x", "+y", "-y", "+z", "-z"}) {
+    const auto axis = parse_axis(name);
+    ASSERT_TRUE(axis) << name;
+    EXPECT_STREQ(to_string(axis.value()), name);
+  }
+  EXPECT_EQ(axis_index(Axis::neg_y), 1);
+  EXPECT_EQ(axis_sign(Axis::neg_y), -1);
+  EXPECT_EQ(axis_sign(Axis::pos_z), 1);
+  EXPECT_TRUE(are_perpendicular(Axis::pos_x, Axis::neg_z));
+  EXPECT_FALSE(are_perpendicular(Axis::pos_x, Axis::neg_x));
+  EXPECT_EQ(parse_axis("x").error(), "expected one of +x, -x, +y, -y, +z, -z, got \"x\"");
+  EXPECT_EQ(parse_axis("+X").error(), "expected one of +x, -x, +y, -y, +z, -z, got \"+X\"");
+}
+
+TEST(North, AxisOrAngle) {
+  EXPECT_EQ(parse_north("-y").value(), North{Axis::neg_y});
+  EXPECT_EQ(parse_north("angle:37.5").value(), North{NorthAngle{37.5}});
+  EXPECT_EQ(parse_north("angle:-360").value(), North{NorthAngle{-360.0}});
+  EXPECT_EQ(to_string(North{NorthAngle{37.5}}), "angle:37.5");
+  EXPECT_EQ(to_string(North{Axis::pos_x}), "+x");
+  EXPECT_EQ(parse_north("angle:400").error(),
+            "angle must be a number of degrees from -360 to 360, as in \"angle:37.5\", got "
+            "\"angle:400\"");
+  EXPECT_EQ(parse_north("angle:inf").error(),
+            "angle must be a number of degrees from -360 to 360, as in \"angle:37.5\", got "
+            "\"angle:inf\"");
+  EXPECT_EQ(parse_north("north").error(),
+            "expected one of +x, -x, +y, -y, +z, -z or \"angle:DEG\", got \"north\"");
+}
+
+TEST(Profile, NamesAndOriginNeeds) {
+  for (const char* name : {"px4", "ardupilot", "px4-gps", "ardupilot-gps", "classic", "custom"}) {
+    const auto profile = parse_profile(name);
+    ASSERT_TRUE(profile) << name;
+    EXPECT_STREQ(to_string(profile.value()), name);
+  }
+  EXPECT_EQ(parse_profile("px4_gps").error(),
+            "unknown profile \"px4_gps\"; did you mean \"px4-gps\"? (one of: px4, ardupilot, "
+            "px4-gps, ardupilot-gps, classic, custom)");
+  // Spellings are exact (lower case); the suggestion ignores case.
+  EXPECT_EQ(parse_profile("PX4").error(),
+            "unknown profile \"PX4\"; did you mean \"px4\"? (one of: px4, ardupilot, px4-gps, "
+            "ardupilot-gps, classic, custom)");
+}
+
+TEST(MessageKind, NamesAndOriginNeeds) {
+  for (const char* name : {"odometry", "vision_position_estimate", "vision_speed_estimate",
+                           "att_pos_mocap", "hil_gps", "gps_input", "local_position_ned"}) {
+    const auto kind = parse_message_kind(name);
+    ASSERT_TRUE(kind) << name;
+    EXPECT_STREQ(to_string(kind.value()), name);
+  }
+  EXPECT_TRUE(needs_origin(MessageKind::hil_gps));
+  EXPECT_TRUE(needs_origin(MessageKind::gps_input));
+  EXPECT_FALSE(needs_origin(MessageKind::odometry));
+  EXPECT_TRUE(needs_origin(Profile::classic));
+  EXPECT_FALSE(needs_origin(Profile::ardupilot));
+  EXPECT_EQ(parse_message_kind("HIL_GPS").error(),
+            "unknown message \"HIL_GPS\"; did you mean \"hil_gps\"? (one of: odometry, "
+            "vision_position_estimate, vision_speed_estimate, att_pos_mocap, hil_gps, gps_input, "
+            "local_position_ned)");
+}
+
+}  // namespace
+}  // namespace mocaplink::config

@@ -1,0 +1,55 @@
+// The example configurations committed under docs/examples/ parse to what their comments say.
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mocaplink/config/load.hpp"
+
+namespace mocaplink::config {
+namespace {
+
+std::string read_example(const std::string& name) {
+  std::ifstream in(std::string(MOCAPLINK_EXAMPLES_DIR) + "/" + name);
+  EXPECT_TRUE(in.good()) << name;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(Examples, LabWithThreeVehicles) {
+  const auto result = parse_config(read_example("lab.toml"), "lab.toml");
+  ASSERT_TRUE(result.ok()) << (result.errors.empty() ? "" : to_string(result.errors[0]));
+  EXPECT_THAT(result.warnings, testing::IsEmpty());
+  const Config& c = *result.config;
+  EXPECT_EQ(c.mocap.source.kind, SourceKind::vicon);
+  EXPECT_EQ(c.mocap.source.host, "192.168.1.3");
+  ASSERT_TRUE(c.origin.has_value());
+  ASSERT_EQ(c.vehicles.size(), 3u);
+  EXPECT_EQ(c.vehicles[0].profile, Profile::px4);
+  EXPECT_EQ(c.vehicles[1].profile, Profile::ardupilot);
+  EXPECT_EQ(c.vehicles[1].link.kind, LinkKind::serial);
+  EXPECT_TRUE(c.vehicles[1].signing_key.has_value());
+  EXPECT_EQ(c.vehicles[2].profile, Profile::ardupilot_gps);
+  EXPECT_EQ(c.vehicles[2].rate_hz, 10.0);
+  EXPECT_FALSE(is_loopback(c.http.listen.host));
+  EXPECT_FALSE(c.http.token.empty());
+}
+
+TEST(Examples, SinglePx4Quad) {
+  const auto result = parse_config(read_example("px4-quad.toml"), "px4-quad.toml");
+  ASSERT_TRUE(result.ok()) << (result.errors.empty() ? "" : to_string(result.errors[0]));
+  EXPECT_THAT(result.warnings, testing::IsEmpty());
+  const Config& c = *result.config;
+  EXPECT_EQ(c.mocap.source.kind, SourceKind::natnet);
+  EXPECT_EQ(c.mocap.up, Axis::pos_y);
+  ASSERT_EQ(c.vehicles.size(), 1u);
+  EXPECT_EQ(c.vehicles[0].profile, Profile::px4);
+  EXPECT_EQ(c.vehicles[0].body_up, Axis::pos_y);
+  EXPECT_EQ(c.vehicles[0].rate_hz, 50.0);
+}
+
+}  // namespace
+}  // namespace mocaplink::config

@@ -1,0 +1,557 @@
+// parse_config: good files become the expected typed values; bad files give exactly the expected
+// messages at the expected lines and columns (positions counted by hand from the texts below).
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "mocaplink/config/load.hpp"
+#include "test_util.hpp"
+
+namespace mocaplink::config {
+namespace {
+
+using testing_util::error_lines;
+using testing_util::warning_lines;
+
+constexpr const char* kGoodFile = R"(# every key, most of them away from their defaults
+[mocap]
+source = "qtm://10.0.0.7:22224"
+up = "+y"
+north = "angle:-12.5"
+body_forward = "+z"
+body_up = "+y"
+
+[origin]
+latitude_deg = 47.3977419
+longitude_deg = 8
+altitude_m = 488.0
+
+[[vehicle]]
+name = "alpha"
+body = "Alpha Body"
+link = "tcp://sitl.local:5760"
+system_id = 42
+component_id = 191
+profile = "custom"
+messages = ["vision_position_estimate", "vision_speed_estimate", "gps_input"]
+rate_hz = 30.5
+signing_key = "000102030405060708090a0b0c0d0e0f101112131415161718191A1B1C1D1E1F"
+body_forward = "-x"
+enabled = false
+
+[[vehicle]]
+name = "beta"
+body = "Beta"
+link = "udp://10.0.0.8:14555"
+system_id = 43
+profile = "classic"
+
+[tracking]
+loss_timeout_ms = 250
+reset_after_ms = 1000
+position_noise_m = 0.002
+attitude_noise_rad = 0.01
+accel_noise_mps2 = 20
+angular_accel_noise_radps2 = 50.5
+gate_sigma = 5
+gate_min_m = 0.05
+jump_confirm_frames = 3
+
+[http]
+listen = "[::1]:0"
+token = "0123456789abcdef"
+)";
+
+TEST(ParseConfig, GoodFileGivesTypedValues) {
+  const auto result = parse_config(kGoodFile, "good.toml");
+  ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+  EXPECT_THAT(warning_lines(result), testing::IsEmpty());
+  const Config& c = *result.config;
+
+  EXPECT_EQ(c.mocap.source.kind, SourceKind::qtm);
+  EXPECT_EQ(c.mocap.source.host, "10.0.0.7");
+  EXPECT_EQ(c.mocap.source.port, 22224);
+  EXPECT_EQ(c.mocap.up, Axis::pos_y);
+  EXPECT_EQ(c.mocap.north, North{NorthAngle{-12.5}});
+  EXPECT_EQ(c.mocap.body_forward, Axis::pos_z);
+  EXPECT_EQ(c.mocap.body_up, Axis::pos_y);
+
+  ASSERT_TRUE(c.origin.has_value());
+  EXPECT_EQ(c.origin->latitude_deg, 47.3977419);
+  EXPECT_EQ(c.origin->longitude_deg, 8.0);  // TOML integer accepted for a number
+  EXPECT_EQ(c.origin->altitude_m, 488.0);
+
+  ASSERT_EQ(c.vehicles.size(), 2u);
+  const Vehicle& a = c.vehicles[0];
+  EXPECT_EQ(a.name, "alpha");
+  EXPECT_EQ(a.body, "Alpha Body");
+  EXPECT_EQ(a.link.kind, LinkKind::tcp);
+  EXPECT_EQ(a.link.address, (HostPort{"sitl.local", 5760}));
+  EXPECT_EQ(a.system_id, 42);
+  EXPECT_EQ(a.component_id, 191);
+  EXPECT_EQ(a.profile, Profile::custom);
+  EXPECT_THAT(a.messages,
+              testing::ElementsAre(MessageKind::vision_position_estimate,
+                                   MessageKind::vision_speed_estimate, MessageKind::gps_input));
+  EXPECT_EQ(a.rate_hz, 30.5);
+  ASSERT_TRUE(a.signing_key.has_value());
+  for (std::size_t i = 0; i < 32; ++i) EXPECT_EQ((*a.signing_key)[i], i) << i;
+  EXPECT_EQ(a.body_forward, Axis::neg_x);  // the vehicle's own
+  EXPECT_EQ(a.body_up, Axis::pos_y);       // inherited from [mocap]
+  EXPECT_FALSE(a.enabled);
+
+  const Vehicle& b = c.vehicles[1];
+  EXPECT_EQ(b.name, "beta");
+  EXPECT_EQ(b.profile, Profile::classic);
+  EXPECT_EQ(b.component_id, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY
+  EXPECT_EQ(b.rate_hz, 50.0);
+  EXPECT_FALSE(b.signing_key.has_value());
+  EXPECT_TRUE(b.messages.empty());
+  EXPECT_EQ(b.body_forward, Axis::pos_z);
+  EXPECT_EQ(b.body_up, Axis::pos_y);
+  EXPECT_TRUE(b.enabled);
+
+  EXPECT_EQ(c.tracking.loss_timeout_ms, 250.0);
+  EXPECT_EQ(c.tracking.reset_after_ms, 1000.0);
+  EXPECT_EQ(c.tracking.position_noise_m, 0.002);
+  EXPECT_EQ(c.tracking.attitude_noise_rad, 0.01);
+  EXPECT_EQ(c.tracking.accel_noise_mps2, 20.0);
+  EXPECT_EQ(c.tracking.angular_accel_noise_radps2, 50.5);
+  EXPECT_EQ(c.tracking.gate_sigma, 5.0);
+  EXPECT_EQ(c.tracking.gate_min_m, 0.05);
+  EXPECT_EQ(c.tracking.jump_confirm_frames, 3u);
+
+  EXPECT_EQ(c.http.listen, (HostPort{"::1", 0}));
+  EXPECT_EQ(c.http.token, "0123456789abcdef");
+}
+
+TEST(ParseConfig, MinimalFileGetsDocumentedDefaults) {
+  const auto result = parse_config(R"([mocap]
+source = "vicon://192.168.1.3"
+[[vehicle]]
+name = "quad1"
+body = "Quad1"
+link = "udp://192.168.1.21:14540"
+system_id = 1
+profile = "px4"
+)",
+                                   "min.toml");
+  ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+  const Config& c = *result.config;
+  EXPECT_EQ(c.mocap.up, Axis::pos_z);
+  EXPECT_EQ(c.mocap.north, North{Axis::pos_x});
+  EXPECT_EQ(c.mocap.body_forward, Axis::pos_x);
+  EXPECT_EQ(c.mocap.body_up, Axis::pos_z);
+  EXPECT_FALSE(c.origin.has_value());
+  EXPECT_FALSE(c.tracking.loss_timeout_ms.has_value());
+  EXPECT_FALSE(c.tracking.reset_after_ms.has_value());
+  EXPECT_FALSE(c.tracking.position_noise_m.has_value());
+  EXPECT_FALSE(c.tracking.attitude_noise_rad.has_value());
+  EXPECT_FALSE(c.tracking.accel_noise_mps2.has_value());
+  EXPECT_FALSE(c.tracking.angular_accel_noise_radps2.has_value());
+  EXPECT_FALSE(c.tracking.gate_sigma.has_value());
+  EXPECT_FALSE(c.tracking.gate_min_m.has_value());
+  EXPECT_FALSE(c.tracking.jump_confirm_frames.has_value());
+  EXPECT_EQ(c.http.listen, (HostPort{"127.0.0.1", 8080}));
+  EXPECT_EQ(c.http.token, "");
+  ASSERT_EQ(c.vehicles.size(), 1u);
+  EXPECT_EQ(c.vehicles[0].rate_hz, 50.0);
+  EXPECT_EQ(c.vehicles[0].component_id, 197);
+  EXPECT_TRUE(c.vehicles[0].enabled);
+}
+
+TEST(ParseConfig, SameSystemIdOnDifferentLinksIsFine) {
+  const auto result = parse_config(R"([mocap]
+source = "sim://"
+[[vehicle]]
+name = "a"
+body = "Body1"
+link = "udp://127.0.0.1:14540"
+system_id = 1
+profile = "px4"
+[[vehicle]]
+name = "b"
+body = "Body2"
+link = "udp://127.0.0.1:14541"
+system_id = 1
+profile = "px4"
+)",
+                                   "t.toml");
+  EXPECT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+  EXPECT_THAT(warning_lines(result), testing::IsEmpty());
+}
+
+struct BadCase {
+  const char* name;
+  std::string toml;
+  std::vector<std::string> errors;
+};
+
+// Lines 1-2 of most cases; a vehicle block of lines 3-8 follows where needed.
+const std::string kMocap = "[mocap]\nsource = \"sim://\"\n";
+const std::string kVehicle =
+    "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\nlink = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+    "profile = \"px4\"\n";
+
+std::vector<BadCase> bad_cases() {
+  return {
+      {"TableTypo",
+       kMocap + "[trackng]\ngate_sigma = 3\n",
+       {"t.toml:3:2: trackng: unknown key; did you mean \"tracking\"?"}},
+      {"KeyInWrongTable",
+       kMocap + "rate_hz = 50\n",
+       {"t.toml:3:1: mocap.rate_hz: unknown key here; it belongs in [[vehicle]]"}},
+      {"TopLevelKey",
+       "source = \"sim://\"\n",
+       {"t.toml:1:1: source: unknown key here; it belongs in [mocap]",
+        "t.toml:1:1: mocap.source: missing required key"}},
+      {"UnknownKeyListsAllowed",
+       kMocap + "colour = \"red\"\n",
+       {"t.toml:3:1: mocap.colour: unknown key (allowed here: source, up, north, body_forward, "
+        "body_up)"}},
+      {"VehicleKeyTypo",
+       kMocap + kVehicle + "rate = 50\n",
+       {"t.toml:9:1: vehicle[1].rate: unknown key; did you mean \"rate_hz\"?"}},
+      {"VehicleKeyTransposed",
+       kMocap + kVehicle + "sytsem_id = 2\n",
+       {"t.toml:9:1: vehicle[1].sytsem_id: unknown key; did you mean \"system_id\"?"}},
+      {"MissingSource",
+       "[mocap]\nup = \"+z\"\n",
+       {"t.toml:1:1: mocap.source: missing required key"}},
+      {"MissingMocapTable",
+       "[http]\nlisten = \"127.0.0.1:9000\"\n",
+       {"t.toml:1:1: mocap.source: missing required key"}},
+      {"MocapNotATable",
+       "mocap = \"vicon://x\"\n",
+       {"t.toml:1:1: mocap: expected a table ([mocap]), got a string"}},
+      {"VehicleNotAnArray",
+       kMocap + "[vehicle]\nname = \"a\"\n",
+       {"t.toml:3:2: vehicle: expected an array of tables ([[vehicle]]), got a table"}},
+      {"VehicleElementNotATable",
+       "vehicle = [1]\n" + kMocap,
+       {"t.toml:1:12: vehicle[1]: expected a table, got an integer"}},
+      {"SourceNotAString",
+       "[mocap]\nsource = 5\n",
+       {"t.toml:2:10: mocap.source: expected a string, got an integer"}},
+      {"BadSourceScheme",
+       "[mocap]\nsource = \"vicn://192.168.1.3\"\n",
+       {"t.toml:2:10: mocap.source: unknown source scheme \"vicn\"; did you mean \"vicon\"? (one "
+        "of: vicon, vicon-udp, natnet, vrpn, qtm, sim, replay)"}},
+      {"BadAxis",
+       kMocap + "up = \"z\"\n",
+       {"t.toml:3:6: mocap.up: expected one of +x, -x, +y, -y, +z, -z, got \"z\""}},
+      {"NorthAlongUp",
+       kMocap + "north = \"-z\"\n",
+       {"t.toml:3:9: mocap.north: north (-z) must be at right angles to up (+z)"}},
+      {"UpAlongDefaultNorth",
+       kMocap + "up = \"+x\"\n",
+       {"t.toml:3:6: mocap.up: north (+x) must be at right angles to up (+x)"}},
+      {"BodyAxesAlong",
+       kMocap + "body_forward = \"+z\"\n",
+       {"t.toml:3:16: mocap.body_forward: body_up (+z) must be at right angles to body_forward "
+        "(+z)"}},
+      {"VehicleBodyAxesAlong",
+       kMocap + kVehicle + "body_up = \"-x\"\n",
+       {"t.toml:9:11: vehicle[1].body_up: body_up (-x) must be at right angles to body_forward "
+        "(+x)"}},
+      {"OriginIncomplete",
+       kMocap + "[origin]\nlatitude_deg = 40\n",
+       {"t.toml:3:1: origin.longitude_deg: missing required key",
+        "t.toml:3:1: origin.altitude_m: missing required key"}},
+      {"OriginOutOfRange",
+       kMocap + "[origin]\nlatitude_deg = 91\nlongitude_deg = -180.5\naltitude_m = 222196\n",
+       {"t.toml:4:16: origin.latitude_deg: must be from -90 to 90, got 91",
+        "t.toml:5:17: origin.longitude_deg: must be from -180 to 180, got -180.5",
+        "t.toml:6:14: origin.altitude_m: must be from -1000 to 10000, got 222196"}},
+      {"OriginWrongType",
+       kMocap + "[origin]\nlatitude_deg = \"40.1\"\nlongitude_deg = 0\naltitude_m = 0\n",
+       {"t.toml:4:16: origin.latitude_deg: expected a number, got a string"}},
+      {"VehicleMissingKeys",
+       kMocap + "[[vehicle]]\nname = \"q\"\n",
+       {"t.toml:3:1: vehicle[1].body: missing required key",
+        "t.toml:3:1: vehicle[1].link: missing required key",
+        "t.toml:3:1: vehicle[1].system_id: missing required key",
+        "t.toml:3:1: vehicle[1].profile: missing required key"}},
+      {"SystemIdWrongType",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = \"1\"\n"
+                "profile = \"px4\"\n",
+       {"t.toml:7:13: vehicle[1].system_id: expected an integer, got a string"}},
+      {"SystemIdRange",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 256\n"
+                "profile = \"px4\"\n",
+       {"t.toml:7:13: vehicle[1].system_id: must be an integer from 1 to 255, got 256"}},
+      {"SystemIdFloat",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1.0\n"
+                "profile = \"px4\"\n",
+       {"t.toml:7:13: vehicle[1].system_id: expected an integer, got a float"}},
+      {"ComponentIsAutopilot",
+       kMocap + kVehicle + "component_id = 1\n",
+       {"t.toml:9:16: vehicle[1].component_id: 1 is the autopilot itself "
+        "(MAV_COMP_ID_AUTOPILOT1); use another id, normally 197"}},
+      {"ComponentZero",
+       kMocap + kVehicle + "component_id = 0\n",
+       {"t.toml:9:16: vehicle[1].component_id: must be an integer from 1 to 255, got 0"}},
+      {"RateZero",
+       kMocap + kVehicle + "rate_hz = 0\n",
+       {"t.toml:9:11: vehicle[1].rate_hz: must be above 0 and at most 500, got 0"}},
+      {"RateTooHigh",
+       kMocap + kVehicle + "rate_hz = 500.5\n",
+       {"t.toml:9:11: vehicle[1].rate_hz: must be above 0 and at most 500, got 500.5"}},
+      {"RateNaN",
+       kMocap + kVehicle + "rate_hz = nan\n",
+       {"t.toml:9:11: vehicle[1].rate_hz: must be above 0 and at most 500, got nan"}},
+      {"RateString",
+       kMocap + kVehicle + "rate_hz = \"50\"\n",
+       {"t.toml:9:11: vehicle[1].rate_hz: expected a number, got a string"}},
+      {"EnabledNotBool",
+       kMocap + kVehicle + "enabled = 1\n",
+       {"t.toml:9:11: vehicle[1].enabled: expected true or false, got an integer"}},
+      {"BadName",
+       kMocap + "[[vehicle]]\nname = \"quad 1\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\nprofile = \"px4\"\n",
+       {"t.toml:4:8: vehicle[1].name: must be 1 to 64 letters, digits, '_', '-' or '.', got "
+        "\"quad 1\""}},
+      {"EmptyBody",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\nprofile = \"px4\"\n",
+       {"t.toml:5:8: vehicle[1].body: must be the rigid-body name as the mocap system spells it "
+        "(1 to 256 characters, no control characters), got \"\""}},
+      {"LinkWithoutPort",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://192.168.1.21\"\nsystem_id = 1\n"
+                "profile = \"px4\"\n",
+       {"t.toml:6:8: vehicle[1].link: missing port: expected HOST:PORT, got \"192.168.1.21\""}},
+      {"ProfileTypo",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"ardupliot\"\n",
+       {"t.toml:8:11: vehicle[1].profile: unknown profile \"ardupliot\"; did you mean "
+        "\"ardupilot\"? (one of: px4, ardupilot, px4-gps, ardupilot-gps, classic, custom)"}},
+      {"MessagesWithoutCustom",
+       kMocap + kVehicle + "messages = [\"odometry\"]\n",
+       {"t.toml:9:12: vehicle[1].messages: messages is only allowed with profile = \"custom\"; "
+        "profile \"px4\" sends a fixed set"}},
+      {"CustomWithoutMessages",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"custom\"\n",
+       {"t.toml:8:11: vehicle[1].messages: profile \"custom\" needs a messages list, e.g. "
+        "messages = [\"odometry\"]"}},
+      {"CustomWithEmptyMessages",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"custom\"\nmessages = []\n",
+       {"t.toml:9:12: vehicle[1].messages: profile \"custom\" needs at least one message"}},
+      {"MessagesBadEntries",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"custom\"\nmessages = [\"odometry\", 3]\n",
+       {"t.toml:9:25: vehicle[1].messages[2]: expected a string, got an integer"}},
+      {"MessagesTypoAndTwice",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"custom\"\n"
+                "messages = [\"odometry\", \"odometry\"]\n"
+                "[[vehicle]]\nname = \"r\"\nbody = \"R\"\n"
+                "link = \"udp://127.0.0.1:14541\"\nsystem_id = 1\n"
+                "profile = \"custom\"\nmessages = [\"hil_gsp\"]\n",
+       {"t.toml:9:12: vehicle[1].messages: \"odometry\" is listed twice",
+        "t.toml:16:12: vehicle[2].messages: unknown message \"hil_gsp\"; did you mean "
+        "\"hil_gps\"? (one of: odometry, vision_position_estimate, vision_speed_estimate, "
+        "att_pos_mocap, hil_gps, gps_input, local_position_ned)"}},
+      {"GpsProfileNeedsOrigin",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"px4-gps\"\n",
+       {"t.toml:8:11: vehicle[1].profile: GPS-type messages (HIL_GPS, GPS_INPUT) need the "
+        "[origin] table (latitude_deg, longitude_deg, altitude_m)"}},
+      {"GpsMessageNeedsOrigin",
+       kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\n"
+                "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
+                "profile = \"custom\"\nmessages = [\"gps_input\"]\n",
+       {"t.toml:9:12: vehicle[1].messages: GPS-type messages (HIL_GPS, GPS_INPUT) need the "
+        "[origin] table (latitude_deg, longitude_deg, altitude_m)"}},
+      {"SigningKeyShort",
+       kMocap + kVehicle + "signing_key = \"abc\"\n",
+       {"t.toml:9:15: vehicle[1].signing_key: must be 64 hexadecimal characters (a 32-byte "
+        "secret) or \"\" for unsigned, got 3 characters"}},
+      {"SigningKeyNotHex",
+       kMocap + kVehicle + "signing_key = \"" + std::string(63, '0') + "g\"\n",
+       {"t.toml:9:15: vehicle[1].signing_key: must be 64 hexadecimal characters (a 32-byte "
+        "secret) or \"\" for unsigned, got 64 characters including non-hex ones"}},
+      {"DuplicateName",
+       kMocap + kVehicle +
+           "[[vehicle]]\nname = \"q\"\nbody = \"Q2\"\n"
+           "link = \"udp://127.0.0.1:14541\"\nsystem_id = 2\nprofile = \"px4\"\n",
+       {"t.toml:10:8: vehicle[2].name: duplicate vehicle name \"q\" (first defined at "
+        "t.toml:4:8)"}},
+      {"DuplicateSystemIdOnLink",
+       kMocap + kVehicle +
+           "[[vehicle]]\nname = \"r\"\nbody = \"R\"\n"
+           "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\nprofile = \"ardupilot\"\n",
+       {"t.toml:13:13: vehicle[2].system_id: system_id 1 is already used on "
+        "udp://127.0.0.1:14540 by vehicle \"q\" (t.toml:7:13)"}},
+      {"PublicDashboardNeedsToken",
+       kMocap + "[http]\nlisten = \"0.0.0.0:8080\"\n",
+       {"t.toml:4:10: http.listen: 0.0.0.0:8080 is reachable from the network, so [http] token "
+        "is required (16 or more characters); every mutating request must carry it"}},
+      {"ShortToken",
+       kMocap + "[http]\ntoken = \"secret\"\n",
+       {"t.toml:4:9: http.token: must be empty or at least 16 characters, got 6"}},
+      {"ListenWithoutPort",
+       kMocap + "[http]\nlisten = \"localhost\"\n",
+       {"t.toml:4:10: http.listen: missing port: expected HOST:PORT, got \"localhost\""}},
+      {"TrackingRanges",
+       kMocap + "[tracking]\ngate_sigma = 0\njump_confirm_frames = 0\ngate_min_m = -1\n"
+                "attitude_noise_rad = 4\n",
+       {"t.toml:4:14: tracking.gate_sigma: must be above 0 and at most 100, got 0",
+        "t.toml:5:23: tracking.jump_confirm_frames: must be an integer from 1 to 1000, got 0",
+        "t.toml:6:14: tracking.gate_min_m: must be from 0 to 100, got -1",
+        "t.toml:7:22: tracking.attitude_noise_rad: must be above 0 and at most "
+        "3.141592653589793, got 4"}},
+      {"TrackingUnknownKey",
+       kMocap + "[tracking]\nloss_timeout = 300\n",
+       {"t.toml:4:1: tracking.loss_timeout: unknown key; did you mean \"loss_timeout_ms\"?"}},
+      {"DateIsNotANumber",
+       kMocap + "[origin]\nlatitude_deg = 1979-05-27\nlongitude_deg = 0\n"
+                "altitude_m = 0\n",
+       {"t.toml:4:16: origin.latitude_deg: expected a number, got a date"}},
+  };
+}
+
+class BadFile : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadFile, GivesExactlyTheExpectedErrors) {
+  const auto result = parse_config(GetParam().toml, "t.toml");
+  EXPECT_FALSE(result.ok());
+  EXPECT_FALSE(result.config.has_value());
+  EXPECT_EQ(error_lines(result), GetParam().errors);
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadFile, testing::ValuesIn(bad_cases()),
+                         [](const testing::TestParamInfo<BadCase>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
+
+TEST(ParseConfig, SyntaxErrorIsTheOnlyErrorAndUsesTheParserPosition) {
+  const auto result = parse_config("[mocap]\nsource = \"sim://\nup = \"+z\"\n", "s.toml");
+  ASSERT_EQ(result.errors.size(), 1u);
+  const auto& e = result.errors[0];
+  EXPECT_EQ(e.file, "s.toml");
+  EXPECT_EQ(e.line, 2u);
+  EXPECT_EQ(e.key, "");
+  EXPECT_THAT(e.message, testing::StartsWith("TOML syntax error: "));
+  EXPECT_THAT(result.warnings, testing::IsEmpty());
+}
+
+TEST(ParseConfig, DuplicateKeyIsASyntaxError) {
+  const auto result = parse_config("[mocap]\nsource = \"sim://\"\nsource = \"sim://\"\n", "d.toml");
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_EQ(result.errors[0].line, 3u);
+  EXPECT_THAT(result.errors[0].message, testing::HasSubstr("redefine"));
+}
+
+TEST(ParseConfig, ReportsEveryErrorAtOnceInFileOrder) {
+  const std::string text = R"([mocap]
+source = "vicon://192.168.1.3"
+north = "+z"
+rate_hz = 50
+
+[[vehicle]]
+name = "quad1"
+body = "Quad1"
+link = "udp://192.168.1.21:14540"
+system_id = 0
+profile = "px5"
+rate = 50
+
+[[vehicle]]
+name = "quad1"
+body = "Quad2"
+link = "udp://192.168.1.22:14540"
+system_id = 2
+profile = "px4"
+messages = ["odometry"]
+
+[http]
+listen = "0.0.0.0:8080"
+)";
+  const auto result = parse_config(text, "lab.toml");
+  EXPECT_EQ(
+      error_lines(result),
+      (std::vector<std::string>{
+          "lab.toml:3:9: mocap.north: north (+z) must be at right angles to up (+z)",
+          "lab.toml:4:1: mocap.rate_hz: unknown key here; it belongs in [[vehicle]]",
+          "lab.toml:10:13: vehicle[1].system_id: must be an integer from 1 to 255, got 0",
+          "lab.toml:11:11: vehicle[1].profile: unknown profile \"px5\"; did you mean \"px4\"? (one "
+          "of: px4, ardupilot, px4-gps, ardupilot-gps, classic, custom)",
+          "lab.toml:12:1: vehicle[1].rate: unknown key; did you mean \"rate_hz\"?",
+          "lab.toml:15:8: vehicle[2].name: duplicate vehicle name \"quad1\" (first defined at "
+          "lab.toml:7:8)",
+          "lab.toml:20:12: vehicle[2].messages: messages is only allowed with profile = "
+          "\"custom\"; profile \"px4\" sends a fixed set",
+          "lab.toml:23:10: http.listen: 0.0.0.0:8080 is reachable from the network, so [http] "
+          "token is required (16 or more characters); every mutating request must carry it",
+      }));
+}
+
+TEST(ParseConfig, WarningsDoNotFail) {
+  const auto result = parse_config(kMocap + kVehicle +
+                                       "[[vehicle]]\nname = \"r\"\nbody = \"R\"\n"
+                                       "link = \"udp://127.0.0.1:14540\"\nsystem_id = 255\n"
+                                       "profile = \"ardupilot\"\nrate_hz = 100\n",
+                                   "w.toml");
+  ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+  EXPECT_EQ(warning_lines(result),
+            (std::vector<std::string>{
+                "w.toml:12:8: vehicle[2].link: link udp://127.0.0.1:14540 is shared with vehicle "
+                "\"q\" (w.toml:6:8): pose messages have no target system, so every vehicle on it "
+                "fuses every pose unless a router filters by system id",
+                "w.toml:13:13: vehicle[2].system_id: 255 is the usual ground-station system id; a "
+                "vehicle using it can mask the GCS (protocols/autopilots.md §11.13)",
+                "w.toml:15:11: vehicle[2].rate_hz: ArduPilot's external-navigation input is meant "
+                "for at most 50 Hz",
+            }));
+}
+
+TEST(ParseConfig, NoVehiclesIsAWarning) {
+  const auto result = parse_config(kMocap, "n.toml");
+  ASSERT_TRUE(result.ok());
+  EXPECT_EQ(warning_lines(result),
+            (std::vector<std::string>{
+                "n.toml:1:1: vehicle: no [[vehicle]] tables: nothing will be sent"}));
+}
+
+TEST(ParseConfig, NatNetWithoutUpWarnsAboutMotiveYUp) {
+  const auto result =
+      parse_config("[mocap]\nsource = \"natnet://10.0.0.5\"\n" + kVehicle, "m.toml");
+  ASSERT_TRUE(result.ok());
+  EXPECT_THAT(warning_lines(result),
+              testing::ElementsAre("m.toml:2:10: mocap.source: Motive streams Y-up unless its Up "
+                                   "Axis setting is Z; set [mocap] up (and body_up) to \"+y\" if "
+                                   "yours does"));
+}
+
+TEST(ParseConfig, NeverEchoesTheSigningKey) {
+  const std::string secret = "s3cr3t-s3cr3t-s3cr3t";
+  const auto result =
+      parse_config(kMocap + kVehicle + "signing_key = \"" + secret + "\"\n", "k.toml");
+  ASSERT_EQ(result.errors.size(), 1u);
+  EXPECT_THAT(result.errors[0].message, testing::Not(testing::HasSubstr(secret)));
+}
+
+TEST(ConfigError, Formatting) {
+  EXPECT_EQ(to_string(ConfigError{"a.toml", 3, 7, "vehicle[1].rate_hz", "bad"}),
+            "a.toml:3:7: vehicle[1].rate_hz: bad");
+  EXPECT_EQ(to_string(ConfigError{"a.toml", 3, 7, "", "syntax"}), "a.toml:3:7: syntax");
+  EXPECT_EQ(to_string(ConfigError{"--vehicle 2", 0, 0, "rate_hz", "bad"}),
+            "--vehicle 2: rate_hz: bad");
+}
+
+}  // namespace
+}  // namespace mocaplink::config
