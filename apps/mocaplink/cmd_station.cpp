@@ -99,7 +99,6 @@ class StationSession {
     const std::lock_guard lock(mutex_);
     return {state_, detail_};
   }
-  [[nodiscard]] std::string url() const { return source_->url(); }
   void stop() { source_->stop(); }
 
  private:

@@ -9,6 +9,9 @@
 #if MOCAPLINK_HAVE_SOURCE_REPLAY
 #include "mocaplink/sources/replay_source.hpp"
 #endif
+#if MOCAPLINK_HAVE_SOURCE_VICON
+#include "mocaplink/sources/vicon_source.hpp"
+#endif
 
 namespace mocaplink::sources {
 namespace {
@@ -68,6 +71,9 @@ std::vector<std::string> available_source_schemes() {
 #if MOCAPLINK_HAVE_SOURCE_REPLAY
   out.emplace_back("replay");
 #endif
+#if MOCAPLINK_HAVE_SOURCE_VICON
+  out.emplace_back("vicon");
+#endif
   return out;
 }
 
@@ -94,6 +100,9 @@ std::variant<std::unique_ptr<Source>, std::string> make_source(std::string_view 
     if (auto* error = std::get_if<std::string>(&config)) return std::move(*error);
     return upcast(ReplaySource::open(std::get<ReplayConfig>(std::move(config)), text));
   }
+#endif
+#if MOCAPLINK_HAVE_SOURCE_VICON
+  if (url.scheme == "vicon") return upcast(ViconSource::create(text));
 #endif
 
   const auto available = available_source_schemes();
