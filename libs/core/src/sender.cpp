@@ -26,6 +26,15 @@ std::int64_t ns_of(HostTime t) {
   return t.time_since_epoch().count();
 }
 
+/// Defence in depth against a filter fed absurd input: every state value finite and within
+/// kMaxPlausiblePositionM / kMaxPlausibleSpeedMps (also keeps float and int conversions defined).
+bool plausible(const BodyEstimate& e) {
+  return e.p_ned_m.allFinite() && e.p_ned_m.cwiseAbs().maxCoeff() <= kMaxPlausiblePositionM &&
+         e.v_ned_mps.allFinite() && e.v_ned_mps.cwiseAbs().maxCoeff() <= kMaxPlausibleSpeedMps &&
+         e.q_ned_frd.coeffs().allFinite() && e.w_frd_radps.allFinite() &&
+         e.pose_covariance.allFinite() && e.velocity_covariance.allFinite();
+}
+
 /// Next time of a periodic message: phase-stable (advance by whole periods), restarting after a
 /// gap of more than one period (a stalled caller gets one message, not a burst).
 bool periodic_due(std::optional<HostTime>& next, HostTime now, Duration period) {
@@ -82,6 +91,10 @@ void Sender::on_estimate(const BodyEstimate& estimate, const SendContext& contex
   if (estimate.state == TrackingState::unseen) return;  // nothing known yet: nothing to say
   if (!due(estimate.capture_time)) return;
   if (paused_) return;
+  if (!plausible(estimate)) {
+    ++counters_.implausible;
+    return;
+  }
   const bool pose_valid = estimate.pose_valid();
   bool any = false;
   for (std::size_t i = 0; i < kMessageKindCount; ++i) {

@@ -95,8 +95,11 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
     if (mocap != nullptr && mocap->state == TrackingState::tracking && std::isfinite(att->yaw)) {
       const double mocap_yaw = euler_321_from_quaternion(mocap->q_ned_frd).yaw_rad;
       const double diff_rad = static_cast<double>(att->yaw) - mocap_yaw;
-      vehicle_yaw_offset_deg_ = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
-      update_agreement(now, reaction);
+      const double offset = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
+      if (std::isfinite(offset)) {
+        vehicle_yaw_offset_deg_ = offset;
+        update_agreement(now, reaction);
+      }
     }
   } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
     if (mocap != nullptr && mocap->state == TrackingState::tracking) {

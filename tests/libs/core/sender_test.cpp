@@ -3,6 +3,7 @@
 #include "mocaplink/core/sender.hpp"
 
 #include <cmath>
+#include <limits>
 #include <variant>
 
 #include <gtest/gtest.h>
@@ -145,6 +146,26 @@ TEST(SenderContent, VisionOnlyWhileTrackedGpsWithFixZeroWhenLost) {
   unseen.capture_time = SourceTime{seconds(3)};
   gps.on_estimate(unseen, ctx, out_gps);
   EXPECT_EQ(out_gps.size(), 1U);
+}
+
+TEST(SenderContent, ImplausibleStateIsNeverSent) {
+  const auto origin = LocalGeodeticFrame::make({47.0, 8.0, 400.0});
+  ASSERT_TRUE(origin);
+  Sender sender(config({MessageKind::odometry, MessageKind::hil_gps}, 50.0));
+  std::vector<OutgoingMessage> out;
+  SendContext ctx;
+  ctx.origin = &*origin;
+  auto e = tracked_at(SourceTime{seconds(1)});
+  e.p_ned_m.x() = std::numeric_limits<double>::quiet_NaN();
+  sender.on_estimate(e, ctx, out);
+  e = tracked_at(SourceTime{seconds(2)});
+  e.p_ned_m.y() = 2e6;  // 2000 km
+  sender.on_estimate(e, ctx, out);
+  e = tracked_at(SourceTime{seconds(3)});
+  e.pose_covariance(0, 0) = std::numeric_limits<double>::infinity();
+  sender.on_estimate(e, ctx, out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(sender.snapshot().counters.implausible, 3U);
 }
 
 TEST(SenderContent, ClassicSendsThreeMessagesWithTimes) {

@@ -46,6 +46,12 @@ inline constexpr Duration kHeartbeatPeriod = std::chrono::seconds(1);
 inline constexpr Duration kOriginPeriod = std::chrono::seconds(1);
 inline constexpr Duration kTimesyncRequestPeriod = std::chrono::seconds(1);
 
+/// A due estimate with a non-finite value, a position beyond this (m) or a speed beyond
+/// kMaxPlausibleSpeedMps is not sent at all (counted in SenderCounters::implausible): no mocap
+/// arena is 1000 km wide, and it keeps every float/integer field conversion well defined.
+inline constexpr double kMaxPlausiblePositionM = 1e6;
+inline constexpr double kMaxPlausibleSpeedMps = 1e4;
+
 /// One message ready for a vehicle's link: the typed message (for logs, the dashboard and tests)
 /// and its encoded MAVLink 2 frame (what goes on the wire).
 struct OutgoingMessage {
@@ -86,6 +92,7 @@ struct SenderCounters {
   std::uint64_t timesync_replies = 0;
   std::uint64_t timesync_requests = 0;
   std::uint64_t due_without_pose = 0;  ///< due slots skipped: pose not valid (lost, occluded)
+  std::uint64_t implausible = 0;       ///< due slots skipped: non-finite or absurd state
   std::uint64_t frames = 0;            ///< frames encoded in total
   std::uint64_t bytes = 0;             ///< bytes encoded in total
 };
