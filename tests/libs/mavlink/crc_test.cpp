@@ -47,5 +47,25 @@ TEST(Crc, ByteWiseEqualsSpan) {
   EXPECT_EQ(crc, crc_accumulate(data));
 }
 
+// The span path (slicing-by-8) agrees with the byte-wise definition for every length and
+// alignment, including tails shorter than 8 bytes.
+TEST(Crc, SpanEqualsByteWiseForAllLengths) {
+  std::array<std::uint8_t, 300> data{};
+  std::uint32_t x = 12345;
+  for (auto& b : data) {
+    x = x * 1103515245u + 12345u;
+    b = static_cast<std::uint8_t>(x >> 16);
+  }
+  for (std::size_t start = 0; start < 8; ++start) {
+    for (std::size_t len = 0; len + start <= data.size(); len += 7) {
+      std::uint16_t expected = kCrcInit;
+      for (std::size_t i = start; i < start + len; ++i)
+        expected = crc_accumulate(data[i], expected);
+      EXPECT_EQ(crc_accumulate(std::span(data).subspan(start, len)), expected)
+          << start << " " << len;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mocaplink::mavlink

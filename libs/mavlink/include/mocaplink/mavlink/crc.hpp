@@ -1,5 +1,5 @@
 // CRC-16/MCRF4XX (X.25 family) as MAVLink uses it: reflected polynomial 0x8408, initial value
-// 0xFFFF, no final XOR (mavlink-wire.md §2). Table-driven, one lookup per byte.
+// 0xFFFF, no final XOR (mavlink-wire.md §2). Table-driven (slicing-by-8 for spans).
 #pragma once
 
 #include <cstddef>
