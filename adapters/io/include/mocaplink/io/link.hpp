@@ -1,0 +1,145 @@
+// A vehicle link: the one endpoint through which a vehicle gets its own poses and talks back
+// (DESIGN.md "Data flow"; protocols/autopilots.md §10: one unicast endpoint per vehicle, never a
+// broadcast). Implementations: UdpLink (link_udp.hpp), TcpLink (link_tcp.hpp), SerialLink
+// (link_serial.hpp).
+//
+// Sending takes one complete MAVLink frame per call (already encoded and, if configured, signed).
+// Receiving runs every incoming byte through a mavlink::StreamParser — datagram mode for UDP,
+// stream mode for serial and TCP — with the link's signing policy, and hands each accepted frame
+// to the FrameHandler. Nothing a vehicle or the network does stops a link: errors are counted
+// (LinkCounters) and the link keeps sending, reconnects or reopens as its kind allows.
+//
+// Threading: a link lives on one asio::io_context; every member function and every callback runs
+// on that context's thread. The io_context must not run handlers after the link is destroyed
+// (destroy links after the loop has stopped).
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "mocaplink/core/time.hpp"
+#include "mocaplink/mavlink/frame.hpp"
+#include "mocaplink/mavlink/signing.hpp"
+#include "mocaplink/mavlink/stream_parser.hpp"
+
+namespace mocaplink::io {
+
+/// What a link can currently do.
+///   connecting  opening, resolving or connecting (TCP: first attempt, or waiting to reconnect)
+///   up          frames are sent (UDP: the socket is open; whether anyone listens is not known)
+///   down        cannot send now (TCP disconnected, serial device gone); frames are dropped and
+///               counted while a retry is scheduled
+///   closed      close() was called; final
+enum class LinkState { connecting, up, down, closed };
+
+[[nodiscard]] constexpr const char* to_string(LinkState state) noexcept {
+  switch (state) {
+    case LinkState::connecting:
+      return "connecting";
+    case LinkState::up:
+      return "up";
+    case LinkState::down:
+      return "down";
+    case LinkState::closed:
+      return "closed";
+  }
+  return "unknown";
+}
+
+/// Cumulative counts since the link was created. Drops of incoming bytes by reason are in
+/// `parser` (bad CRC, bad signature, replay, unsigned rejected, ...).
+struct LinkCounters {
+  std::uint64_t frames_sent = 0;  ///< frames handed to the OS (UDP) or fully written
+  std::uint64_t bytes_sent = 0;
+  std::uint64_t send_errors = 0;      ///< OS errors on send/write other than those below
+  std::uint64_t refused = 0;          ///< ECONNREFUSED: ICMP port unreachable (UDP), refused
+                                      ///< connection attempts (TCP)
+  std::uint64_t dropped_down = 0;     ///< frames dropped because the link was not up
+  std::uint64_t dropped_backlog = 0;  ///< frames dropped because the OS or write backlog was full
+  std::uint64_t bytes_received = 0;
+  std::uint64_t receive_errors = 0;  ///< OS errors on receive other than ECONNREFUSED
+  std::uint64_t connects = 0;        ///< successful opens/connections (reconnects = this − 1)
+  mavlink::ParserCounters parser;    ///< incoming frames accepted and dropped, by reason
+};
+
+/// Options common to every link kind.
+struct LinkOptions {
+  std::string name;  ///< for logs and state details (the vehicle name)
+  /// With a key: incoming frames are verified against it and unsigned frames rejected (except
+  /// RADIO_STATUS, mavlink-wire.md §7.5). Without: every CRC-valid frame is accepted.
+  std::optional<mavlink::SigningKey> verify_key;
+  /// Stream links (TCP, serial) queue at most this many bytes not yet written; frames beyond are
+  /// dropped (dropped_backlog) so a slow link sheds load instead of adding latency. ≥ 280.
+  std::size_t max_backlog_bytes = 16 * 1024;
+  /// Back-off between reconnect/reopen attempts: starts at the minimum, doubles up to the maximum.
+  std::chrono::milliseconds retry_min{250};
+  std::chrono::milliseconds retry_max{4000};
+};
+
+class Link {
+ public:
+  /// One accepted incoming frame (valid only during the call) and the host time it arrived.
+  using FrameHandler = std::function<void(const mavlink::FrameView& frame, core::HostTime t)>;
+  /// The link's state changed; `detail` says why (e.g. the OS error text).
+  using StateHandler = std::function<void(LinkState state, const std::string& detail)>;
+
+  virtual ~Link() = default;
+  Link(const Link&) = delete;
+  Link& operator=(const Link&) = delete;
+
+  /// Opens the link and starts receiving. Call once. Handlers may be empty.
+  virtual void start(FrameHandler on_frame, StateHandler on_state) = 0;
+  /// Sends one complete frame (≤ mavlink::kMaxFrameSize bytes). Returns false when the frame was
+  /// dropped (counted): link not up, backlog full, or an OS error.
+  virtual bool send(std::span<const std::uint8_t> frame) = 0;
+  /// Stops receiving and reconnecting. Stream links try to write what is queued for at most
+  /// `linger` before the socket closes; UDP sends synchronously, so nothing is pending.
+  virtual void close(std::chrono::milliseconds linger = std::chrono::milliseconds{0}) = 0;
+  /// Bytes accepted by send() but not yet written (0 for UDP).
+  [[nodiscard]] virtual std::size_t backlog_bytes() const noexcept = 0;
+  /// The URL the link was made from ("udp://127.0.0.1:14550").
+  [[nodiscard]] virtual std::string url() const = 0;
+
+  [[nodiscard]] LinkState state() const noexcept { return state_; }
+  /// Counters, including a copy of the parser's.
+  [[nodiscard]] LinkCounters counters() const noexcept;
+  /// The link's signing clock as raised by correctly signed incoming frames (0 without a key):
+  /// feed it to the outgoing signer (mavlink-wire.md §7.3).
+  [[nodiscard]] std::uint64_t verified_timestamp_10us() const noexcept;
+  [[nodiscard]] const std::string& name() const noexcept { return options_.name; }
+
+ protected:
+  explicit Link(LinkOptions options);
+
+  /// One UDP datagram in: parsed in datagram mode, accepted frames delivered.
+  void receive_datagram(std::span<const std::uint8_t> bytes);
+  /// Stream bytes in (any chunking).
+  void receive_stream(std::span<const std::uint8_t> bytes);
+  /// The stream ended (connection closed): a partial frame is counted and discarded.
+  void end_stream();
+  /// Changes the state and tells the StateHandler (only when it changes).
+  void set_state(LinkState state, const std::string& detail);
+  void set_handlers(FrameHandler on_frame, StateHandler on_state);
+  /// Next back-off delay (retry_min, doubling to retry_max); reset_backoff() after a success.
+  [[nodiscard]] std::chrono::milliseconds next_backoff() noexcept;
+  void reset_backoff() noexcept { backoff_ = std::chrono::milliseconds{0}; }
+
+  LinkOptions options_;
+  LinkCounters counters_;  // parser field unused here: counters() fills it from parser_
+
+ private:
+  std::optional<mavlink::SignatureVerifier> verifier_;
+  mavlink::StreamParser parser_;  // after verifier_: holds a pointer to it
+  FrameHandler on_frame_;
+  StateHandler on_state_;
+  LinkState state_ = LinkState::connecting;
+  std::chrono::milliseconds backoff_{0};
+};
+
+}  // namespace mocaplink::io

@@ -1,0 +1,71 @@
+// Common behaviour of the byte-stream links (TCP, serial): open with back-off, one read loop
+// feeding the stream parser, a bounded write backlog (link_backlog.hpp), reopen after any error,
+// and a bounded linger on close so the last frames leave before the process exits.
+//
+//   connecting ──open ok──▶ up ──read/write error, EOF──▶ down ──back-off──▶ (open again) ...
+//
+// While the link is not up, send() drops frames and counts them (dropped_down): a pose delivered
+// after a reconnect would be stale, and MAVLink has no retransmission to expect it.
+// Subclasses provide the transport through the protected hooks. Threading as in link.hpp.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <system_error>
+
+#include <asio/io_context.hpp>
+#include <asio/steady_timer.hpp>
+
+#include "mocaplink/io/link.hpp"
+#include "mocaplink/io/link_backlog.hpp"
+
+namespace mocaplink::io {
+
+class StreamLink : public Link {
+ public:
+  ~StreamLink() override;
+
+  void start(FrameHandler on_frame, StateHandler on_state) final;
+  bool send(std::span<const std::uint8_t> frame) final;
+  void close(std::chrono::milliseconds linger) final;
+  [[nodiscard]] std::size_t backlog_bytes() const noexcept final { return backlog_.bytes(); }
+
+ protected:
+  using IoHandler = std::function<void(const std::error_code& error, std::size_t bytes)>;
+  using OpenHandler = std::function<void(const std::error_code& error, const std::string& detail)>;
+
+  StreamLink(asio::io_context& loop, LinkOptions options);
+
+  /// Begin opening/connecting; call `done` exactly once (on the loop thread). `detail` names the
+  /// endpoint (for the state message).
+  virtual void async_open(OpenHandler done) = 0;
+  /// Write all of `bytes` (asio::async_write semantics).
+  virtual void async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) = 0;
+  /// Read some bytes into `buffer`.
+  virtual void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) = 0;
+  /// Close the transport (cancels its pending operations). Must be safe when already closed.
+  virtual void close_transport() noexcept = 0;
+
+  asio::io_context& loop_;
+
+ private:
+  void open();
+  void on_opened(std::uint64_t generation, const std::error_code& error, const std::string& detail);
+  void read();
+  void kick_write();
+  void lose_connection(const std::string& why);
+  void finish_close();
+
+  LinkBacklog backlog_;
+  asio::steady_timer retry_timer_;
+  asio::steady_timer linger_timer_;
+  std::uint64_t generation_ = 0;  // bumped per connection; handlers of older ones are ignored
+  bool closing_ = false;
+  std::array<std::uint8_t, 4096> read_buffer_{};
+};
+
+}  // namespace mocaplink::io

@@ -1,0 +1,56 @@
+// udp://host:port — one UDP socket per vehicle (DESIGN.md "Link URLs"; autopilots.md §10).
+//
+// The socket binds an ephemeral local port and connect()s to the vehicle's address, so:
+//   * replies are read on the same socket, and only the vehicle's address:port can reach it;
+//   * an ICMP port-unreachable (nobody listening yet, autopilot rebooting) surfaces as
+//     ECONNREFUSED on the next send or receive: counted in `refused` and otherwise ignored — the
+//     frame that met the error is sent again once, the loop never stops;
+//   * sends are synchronous and non-blocking: a full socket buffer drops the frame
+//     (dropped_backlog) instead of queueing stale poses.
+// Host names are resolved when the link starts; a failure (no route, unknown host) leaves the link
+// `down` and is retried with back-off.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <asio/io_context.hpp>
+#include <asio/ip/udp.hpp>
+#include <asio/steady_timer.hpp>
+
+#include "mocaplink/io/link.hpp"
+
+namespace mocaplink::io {
+
+class UdpLink final : public Link {
+ public:
+  /// `host`: IPv4/IPv6 literal or DNS name; `port` 1..65535.
+  UdpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options);
+  ~UdpLink() override;
+
+  void start(FrameHandler on_frame, StateHandler on_state) override;
+  bool send(std::span<const std::uint8_t> frame) override;
+  void close(std::chrono::milliseconds linger) override;
+  [[nodiscard]] std::size_t backlog_bytes() const noexcept override { return 0; }
+  [[nodiscard]] std::string url() const override;
+
+  /// The local endpoint (tests: where the vehicle's replies must go). Unspecified before `up`.
+  [[nodiscard]] asio::ip::udp::endpoint local_endpoint() const;
+
+ private:
+  void open();
+  void schedule_retry(const std::string& why);
+  void receive();
+
+  asio::io_context& loop_;
+  std::string host_;
+  std::uint16_t port_;
+  asio::ip::udp::socket socket_;
+  asio::steady_timer retry_timer_;
+  // Largest UDP payload: a datagram never holds more, and a smaller buffer would truncate a
+  // datagram packed with several frames.
+  std::array<std::uint8_t, 65536> receive_buffer_{};
+};
+
+}  // namespace mocaplink::io

@@ -1,0 +1,83 @@
+#include "mocaplink/io/link.hpp"
+
+#include <algorithm>
+#include <utility>
+
+#include "mocaplink/io/clock.hpp"
+
+namespace mocaplink::io {
+namespace {
+
+std::optional<mavlink::SignatureVerifier> make_verifier(
+    const std::optional<mavlink::SigningKey>& key) {
+  if (!key) return std::nullopt;
+  // A configured key means the vehicle signs too: ArduPilot and PX4 with signing enabled reject
+  // our unsigned frames, so we reject theirs (mavlink-wire.md §7.5; RADIO_STATUS excepted).
+  return mavlink::SignatureVerifier(*key, mavlink::SignatureVerifier::Options{
+                                              .unsigned_policy = mavlink::UnsignedPolicy::reject,
+                                              .accept_unsigned_radio_status = true,
+                                          });
+}
+
+}  // namespace
+
+Link::Link(LinkOptions options)
+    : options_(std::move(options)),
+      verifier_(make_verifier(options_.verify_key)),
+      parser_(verifier_ ? &*verifier_ : nullptr) {
+  options_.max_backlog_bytes = std::max(options_.max_backlog_bytes, mavlink::kMaxFrameSize);
+  options_.retry_min = std::max(options_.retry_min, std::chrono::milliseconds{1});
+  options_.retry_max = std::max(options_.retry_max, options_.retry_min);
+}
+
+LinkCounters Link::counters() const noexcept {
+  LinkCounters out = counters_;
+  out.parser = parser_.counters();
+  return out;
+}
+
+std::uint64_t Link::verified_timestamp_10us() const noexcept {
+  return verifier_ ? verifier_->local_timestamp_10us() : 0;
+}
+
+void Link::receive_datagram(std::span<const std::uint8_t> bytes) {
+  counters_.bytes_received += bytes.size();
+  const core::HostTime t = host_now();
+  parser_.feed_datagram(bytes, signing_now_10us(), [&](const mavlink::FrameView& frame) {
+    if (on_frame_) on_frame_(frame, t);
+  });
+}
+
+void Link::receive_stream(std::span<const std::uint8_t> bytes) {
+  counters_.bytes_received += bytes.size();
+  const core::HostTime t = host_now();
+  parser_.feed(bytes, signing_now_10us(), [&](const mavlink::FrameView& frame) {
+    if (on_frame_) on_frame_(frame, t);
+  });
+}
+
+void Link::end_stream() {
+  const core::HostTime t = host_now();
+  parser_.finish(signing_now_10us(), [&](const mavlink::FrameView& frame) {
+    if (on_frame_) on_frame_(frame, t);
+  });
+}
+
+void Link::set_state(LinkState state, const std::string& detail) {
+  if (state == state_) return;
+  state_ = state;
+  if (on_state_) on_state_(state, detail);
+}
+
+void Link::set_handlers(FrameHandler on_frame, StateHandler on_state) {
+  on_frame_ = std::move(on_frame);
+  on_state_ = std::move(on_state);
+}
+
+std::chrono::milliseconds Link::next_backoff() noexcept {
+  backoff_ =
+      backoff_.count() == 0 ? options_.retry_min : std::min(backoff_ * 2, options_.retry_max);
+  return backoff_;
+}
+
+}  // namespace mocaplink::io

@@ -1,0 +1,136 @@
+#include "mocaplink/io/link_stream.hpp"
+
+#include <utility>
+
+namespace mocaplink::io {
+
+StreamLink::StreamLink(asio::io_context& loop, LinkOptions options)
+    : Link(std::move(options)),
+      loop_(loop),
+      backlog_(options_.max_backlog_bytes),
+      retry_timer_(loop),
+      linger_timer_(loop) {}
+
+StreamLink::~StreamLink() {
+  retry_timer_.cancel();
+  linger_timer_.cancel();
+}
+
+void StreamLink::start(FrameHandler on_frame, StateHandler on_state) {
+  set_handlers(std::move(on_frame), std::move(on_state));
+  open();
+}
+
+void StreamLink::open() {
+  if (closing_ || state() == LinkState::closed) return;
+  const std::uint64_t generation = ++generation_;
+  async_open([this, generation](const std::error_code& error, const std::string& detail) {
+    on_opened(generation, error, detail);
+  });
+}
+
+void StreamLink::on_opened(std::uint64_t generation, const std::error_code& error,
+                           const std::string& detail) {
+  if (generation != generation_ || closing_ || state() == LinkState::closed) return;
+  if (error) {
+    if (error == asio::error::connection_refused) ++counters_.refused;
+    close_transport();
+    set_state(LinkState::down, detail + ": " + error.message());
+    retry_timer_.expires_after(next_backoff());
+    retry_timer_.async_wait([this](const std::error_code& e) {
+      if (!e) open();
+    });
+    return;
+  }
+  reset_backoff();
+  ++counters_.connects;
+  set_state(LinkState::up, detail);
+  read();
+}
+
+void StreamLink::read() {
+  const std::uint64_t generation = generation_;
+  async_read_some(read_buffer_, [this, generation](const std::error_code& error, std::size_t n) {
+    if (generation != generation_ || state() == LinkState::closed) return;
+    if (n > 0) receive_stream(std::span<const std::uint8_t>(read_buffer_.data(), n));
+    if (error) {
+      if (error != asio::error::eof) ++counters_.receive_errors;
+      lose_connection(error == asio::error::eof ? "closed by peer" : error.message());
+      return;
+    }
+    read();
+  });
+}
+
+bool StreamLink::send(std::span<const std::uint8_t> frame) {
+  if (state() != LinkState::up || closing_) {
+    ++counters_.dropped_down;
+    return false;
+  }
+  if (!backlog_.append(frame)) {
+    ++counters_.dropped_backlog;
+    return false;
+  }
+  kick_write();
+  return true;
+}
+
+void StreamLink::kick_write() {
+  if (backlog_.writing() || !backlog_.has_pending()) return;
+  const std::uint64_t generation = generation_;
+  const auto bytes = backlog_.begin_write();
+  async_write_all(bytes, [this, generation, size = bytes.size()](const std::error_code& error,
+                                                                 std::size_t /*n*/) {
+    if (generation != generation_) return;
+    if (error) {
+      if (state() == LinkState::closed) return;
+      ++counters_.send_errors;
+      lose_connection(error.message());
+      if (closing_) finish_close();
+      return;
+    }
+    counters_.frames_sent += backlog_.finish_write();
+    counters_.bytes_sent += size;
+    kick_write();
+    if (closing_ && !backlog_.writing()) finish_close();
+  });
+}
+
+void StreamLink::lose_connection(const std::string& why) {
+  end_stream();
+  close_transport();
+  ++generation_;  // ignore completions of the dead connection
+  counters_.dropped_down += backlog_.clear();
+  if (closing_) return;
+  set_state(LinkState::down, why);
+  retry_timer_.expires_after(next_backoff());
+  retry_timer_.async_wait([this](const std::error_code& e) {
+    if (!e) open();
+  });
+}
+
+void StreamLink::close(std::chrono::milliseconds linger) {
+  if (closing_ || state() == LinkState::closed) return;
+  closing_ = true;
+  retry_timer_.cancel();
+  if (state() == LinkState::up && backlog_.writing() && linger.count() > 0) {
+    // Let the queued frames leave, but never wait longer than `linger`.
+    linger_timer_.expires_after(linger);
+    linger_timer_.async_wait([this](const std::error_code& e) {
+      if (!e) finish_close();
+    });
+    return;
+  }
+  finish_close();
+}
+
+void StreamLink::finish_close() {
+  if (state() == LinkState::closed) return;
+  linger_timer_.cancel();
+  ++generation_;
+  counters_.dropped_down += backlog_.clear();
+  close_transport();
+  set_state(LinkState::closed, "closed");
+}
+
+}  // namespace mocaplink::io

@@ -1,0 +1,61 @@
+#include "mocaplink/io/link_tcp.hpp"
+
+#include <utility>
+
+#include <asio/connect.hpp>
+#include <asio/post.hpp>
+#include <asio/write.hpp>
+
+namespace mocaplink::io {
+
+TcpLink::TcpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options)
+    : StreamLink(loop, std::move(options)), host_(std::move(host)), port_(port), socket_(loop) {}
+
+TcpLink::~TcpLink() {
+  close_transport();
+}
+
+std::string TcpLink::url() const {
+  const bool v6 = host_.find(':') != std::string::npos;
+  return "tcp://" + (v6 ? "[" + host_ + "]" : host_) + ":" + std::to_string(port_);
+}
+
+void TcpLink::async_open(OpenHandler done) {
+  std::error_code ec;
+  asio::ip::tcp::resolver resolver(loop_);
+  const auto endpoints =
+      resolver.resolve(host_, std::to_string(port_), asio::ip::resolver_base::numeric_service, ec);
+  if (ec || endpoints.empty()) {
+    // Report through the loop, never re-entrantly from start().
+    asio::post(loop_, [done = std::move(done), ec, host = host_] {
+      done(ec ? ec : asio::error::host_not_found, "cannot resolve " + host);
+    });
+    return;
+  }
+  close_transport();
+  asio::async_connect(socket_, endpoints,
+                      [this, done = std::move(done)](const std::error_code& error,
+                                                     const asio::ip::tcp::endpoint& /*endpoint*/) {
+                        if (!error) {
+                          std::error_code ignored;
+                          socket_.set_option(asio::ip::tcp::no_delay(true), ignored);
+                        }
+                        done(error, error ? "cannot connect to " + url() : "connected to " + url());
+                      });
+}
+
+void TcpLink::async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) {
+  asio::async_write(socket_, asio::buffer(bytes.data(), bytes.size()), std::move(done));
+}
+
+void TcpLink::async_read_some(std::span<std::uint8_t> buffer, IoHandler done) {
+  socket_.async_read_some(asio::buffer(buffer.data(), buffer.size()), std::move(done));
+}
+
+void TcpLink::close_transport() noexcept {
+  std::error_code ignored;
+  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  socket_.close(ignored);
+}
+
+}  // namespace mocaplink::io

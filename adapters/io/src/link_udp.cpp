@@ -1,0 +1,138 @@
+#include "mocaplink/io/link_udp.hpp"
+
+#include <string_view>
+#include <utility>
+
+#include <asio/ip/address.hpp>
+
+namespace mocaplink::io {
+namespace {
+
+bool is_refused(const std::error_code& error) {
+  return error == asio::error::connection_refused;
+}
+
+std::string bracketed(const std::string& host) {
+  return host.find(':') == std::string::npos ? host : "[" + host + "]";
+}
+
+}  // namespace
+
+UdpLink::UdpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options)
+    : Link(std::move(options)),
+      loop_(loop),
+      host_(std::move(host)),
+      port_(port),
+      socket_(loop),
+      retry_timer_(loop) {}
+
+UdpLink::~UdpLink() {
+  std::error_code ignored;
+  retry_timer_.cancel();
+  socket_.close(ignored);
+}
+
+std::string UdpLink::url() const {
+  return "udp://" + bracketed(host_) + ":" + std::to_string(port_);
+}
+
+asio::ip::udp::endpoint UdpLink::local_endpoint() const {
+  std::error_code ec;
+  auto endpoint = socket_.local_endpoint(ec);
+  return ec ? asio::ip::udp::endpoint{} : endpoint;
+}
+
+void UdpLink::start(FrameHandler on_frame, StateHandler on_state) {
+  set_handlers(std::move(on_frame), std::move(on_state));
+  open();
+}
+
+void UdpLink::open() {
+  if (state() == LinkState::closed) return;
+  std::error_code ec;
+  asio::ip::udp::resolver resolver(loop_);
+  // Resolution is synchronous: it happens once per (re)open, links are usually literals, and a
+  // DNS stall at start-up delays only the start.
+  const auto results =
+      resolver.resolve(host_, std::to_string(port_), asio::ip::resolver_base::numeric_service, ec);
+  if (ec || results.empty()) {
+    schedule_retry("cannot resolve " + host_ + ": " + (ec ? ec.message() : "no address"));
+    return;
+  }
+  const asio::ip::udp::endpoint remote = *results.begin();
+  socket_.close(ec);
+  socket_.open(remote.protocol(), ec);
+  if (!ec) socket_.non_blocking(true, ec);
+  if (!ec) socket_.connect(remote, ec);
+  if (ec) {
+    socket_.close(ec);
+    schedule_retry("cannot open a UDP socket to " + url() + ": " + ec.message());
+    return;
+  }
+  reset_backoff();
+  ++counters_.connects;
+  set_state(LinkState::up,
+            "sending to " + url() + " from port " + std::to_string(local_endpoint().port()));
+  receive();
+}
+
+void UdpLink::schedule_retry(const std::string& why) {
+  set_state(LinkState::down, why);
+  retry_timer_.expires_after(next_backoff());
+  retry_timer_.async_wait([this](const std::error_code& error) {
+    if (!error) open();
+  });
+}
+
+void UdpLink::receive() {
+  socket_.async_receive(
+      asio::buffer(receive_buffer_), [this](const std::error_code& error, std::size_t n) {
+        if (error == asio::error::operation_aborted || state() == LinkState::closed) return;
+        if (error) {
+          if (is_refused(error)) {
+            ++counters_.refused;  // an earlier datagram met an ICMP port unreachable
+          } else {
+            ++counters_.receive_errors;
+          }
+        } else {
+          receive_datagram(std::span<const std::uint8_t>(receive_buffer_.data(), n));
+        }
+        if (socket_.is_open()) receive();
+      });
+}
+
+bool UdpLink::send(std::span<const std::uint8_t> frame) {
+  if (state() != LinkState::up) {
+    ++counters_.dropped_down;
+    return false;
+  }
+  std::error_code ec;
+  // A pending ICMP error is reported by (and cleared by) the first call that meets it, without
+  // sending: count it and try this frame once more.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    socket_.send(asio::buffer(frame.data(), frame.size()), 0, ec);
+    if (!is_refused(ec)) break;
+    ++counters_.refused;
+  }
+  if (!ec) {
+    ++counters_.frames_sent;
+    counters_.bytes_sent += frame.size();
+    return true;
+  }
+  if (ec == asio::error::would_block || ec == asio::error::no_buffer_space) {
+    ++counters_.dropped_backlog;
+  } else if (!is_refused(ec)) {
+    ++counters_.send_errors;
+  }
+  return false;
+}
+
+void UdpLink::close(std::chrono::milliseconds /*linger*/) {
+  if (state() == LinkState::closed) return;
+  set_state(LinkState::closed, "closed");
+  std::error_code ignored;
+  retry_timer_.cancel();
+  socket_.close(ignored);
+}
+
+}  // namespace mocaplink::io
