@@ -1,0 +1,41 @@
+// `mocaplink run`: command-line options → a validated Config (or every problem, printed), and
+// Config → the core's BridgeConfig. Exit-code policy: any problem here is bad input (exit 1) and
+// happens before a socket is opened, so nothing is sent.
+#pragma once
+
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mocaplink/config/config.hpp"
+#include "mocaplink/core/bridge.hpp"
+
+namespace mocaplink::app {
+
+/// The options of `mocaplink run` as given (DESIGN.md "Command line").
+struct RunOptions {
+  std::optional<std::string> config_file;  ///< --config FILE; none: the built-in demo
+  std::optional<std::string> source;       ///< --source URL
+  std::vector<std::string> vehicles;       ///< --vehicle SPEC, in order
+  std::optional<std::string> http;         ///< --http ADDR
+  std::optional<std::string> record_dir;   ///< --record DIR
+};
+
+/// Reads the file (if any), applies the overrides (to the demo config when no file is given),
+/// and prints every error ("FILE:LINE:COL: key: message") and warning ("warning: ...") to `err`.
+/// nullopt when the configuration is unusable.
+[[nodiscard]] std::optional<config::Config> load_run_config(const RunOptions& options,
+                                                            std::FILE* err);
+
+/// The core's view of a validated Config. Errors here would be bugs in the config library
+/// (which checks the same rules) and are returned as text.
+[[nodiscard]] std::optional<core::BridgeConfig> make_bridge_config(const config::Config& config,
+                                                                   std::string& error);
+
+/// Bytes per second the vehicle's profile puts on its link at its rate (pose messages at rate_hz
+/// plus HEARTBEAT, TIMESYNC and origin at 1 Hz), with every frame at its full MAVLink 2 size (and
+/// signature): an upper bound, compared with a serial link's baud/10.
+[[nodiscard]] double profile_bytes_per_second(const config::Vehicle& vehicle);
+
+}  // namespace mocaplink::app

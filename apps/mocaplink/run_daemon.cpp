@@ -1,0 +1,332 @@
+// The daemon's object graph and lifecycle (run_daemon.hpp). Everything below runs on the event
+// loop's thread except the Source's callbacks, which only push to the queue or post to the loop.
+#include "run_daemon.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <spdlog/spdlog.h>
+#include <asio/io_context.hpp>
+#include <asio/post.hpp>
+#include <asio/steady_timer.hpp>
+
+#include "mocaplink/core/bridge.hpp"
+#include "mocaplink/io/bounded_queue.hpp"
+#include "mocaplink/io/clock.hpp"
+#include "mocaplink/io/signals.hpp"
+#include "mocaplink/io/signing_store.hpp"
+#include "mocaplink/mavlink/frame.hpp"
+#include "mocaplink/mavlink/signing.hpp"
+#include "mocaplink/sources/source_factory.hpp"
+#include "run_config.hpp"
+#include "run_links.hpp"
+#include "run_recorder.hpp"
+#include "run_summary.hpp"
+
+namespace mocaplink::app {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// Bridge::on_tick cadence (bridge.hpp asks for about 100 ms).
+constexpr auto kTickPeriod = 100ms;
+/// Recording files are flushed this often: a crash loses at most this much.
+constexpr auto kFlushPeriod = 1s;
+/// Signing timestamps are persisted this often (mavlink-wire.md §7.3: at least once a minute).
+constexpr auto kSigningSavePeriod = 30s;
+/// How long a stop waits for stream links to write what they queued.
+constexpr auto kLinger = 250ms;
+/// Frames waiting between the source thread and the loop; ~1 s at 1 kHz. Overflow drops the
+/// oldest (io/bounded_queue.hpp) and is reported in the summary.
+constexpr std::size_t kQueueCapacity = 1024;
+
+struct QueuedFrame {
+  core::MocapFrame frame;
+  core::HostTime received;
+};
+
+/// The signing timestamp of a signed MAVLink 2 frame we encoded (mavlink-wire.md §7.1), if any.
+std::optional<std::uint64_t> signing_timestamp(std::span<const std::uint8_t> frame) {
+  if (frame.size() < mavlink::kHeaderSizeV2 + mavlink::kChecksumSize + mavlink::kSignatureSize ||
+      frame[0] != mavlink::kMagicV2 || (frame[2] & mavlink::kIncompatSigned) == 0) {
+    return std::nullopt;
+  }
+  const std::size_t at = mavlink::kHeaderSizeV2 + frame[1] + mavlink::kChecksumSize + 1;
+  if (at + 6 > frame.size()) return std::nullopt;
+  std::uint64_t ts = 0;
+  for (std::size_t i = 0; i < 6; ++i) ts |= std::uint64_t{frame[at + i]} << (8 * i);
+  return ts;
+}
+
+class Daemon {
+ public:
+  Daemon(const DaemonSettings& settings, core::Bridge bridge,
+         std::unique_ptr<sources::Source> source, std::unique_ptr<Recorder> recorder)
+      : settings_(settings),
+        bridge_(std::move(bridge)),
+        source_(std::move(source)),
+        recorder_(std::move(recorder)),
+        queue_(kQueueCapacity),
+        store_(settings.state_dir),
+        tick_timer_(loop_),
+        flush_timer_(loop_),
+        signing_timer_(loop_),
+        summary_timer_(loop_),
+        stop_timer_(loop_),
+        summary_(settings.config, settings.summary_period) {}
+
+  int run();
+
+ private:
+  void restore_signing();
+  void open_links();
+  void start_source();
+  void drain();
+  void dispatch(core::BridgeOutput&& out);
+  void on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame, core::HostTime t);
+  void save_signing();
+  void stop(const std::string& reason);
+  template <typename F>
+  void every(asio::steady_timer& timer, std::chrono::milliseconds period, F f);
+
+  const DaemonSettings& settings_;
+  asio::io_context loop_;
+  core::Bridge bridge_;
+  std::unique_ptr<sources::Source> source_;
+  std::unique_ptr<Recorder> recorder_;
+  io::BoundedQueue<QueuedFrame> queue_;
+  std::vector<QueuedFrame> batch_;
+  io::SigningStore store_;
+  std::vector<VehicleLink> vehicles_;
+  asio::steady_timer tick_timer_;
+  asio::steady_timer flush_timer_;
+  asio::steady_timer signing_timer_;
+  asio::steady_timer summary_timer_;
+  asio::steady_timer stop_timer_;
+  Summary summary_;
+  bool stopping_ = false;
+};
+
+template <typename F>
+void Daemon::every(asio::steady_timer& timer, std::chrono::milliseconds period, F f) {
+  timer.expires_after(period);
+  timer.async_wait([this, &timer, period, f](const std::error_code& error) {
+    if (error || stopping_) return;
+    f();
+    every(timer, period, f);
+  });
+}
+
+void Daemon::restore_signing() {
+  // Restore: every link continues above its persisted timestamp (mavlink-wire.md §7.3). The core
+  // signs at max(now, last + 1) from the wall clock we give it, so when a stored value is ahead
+  // of the wall clock (clock stepped back, or a fast restart on a machine without RTC) the wall
+  // clock handed to the core is moved up to it.
+  std::int64_t unix_us = io::unix_now_us();
+  std::uint64_t highest = 0;
+  for (std::size_t i = 0; i < settings_.config.vehicles.size(); ++i) {
+    const auto& v = settings_.config.vehicles[i];
+    if (!v.signing_key) continue;
+    std::string problem;
+    const auto stored = store_.load(v.name, &problem);
+    if (!problem.empty()) spdlog::warn("signing: {}", problem);
+    if (stored) highest = std::max(highest, *stored);
+  }
+  if (highest > 0) {
+    const std::int64_t needed_us =
+        mavlink::kSigningEpochUnixS * 1'000'000 + static_cast<std::int64_t>(highest + 1) * 10;
+    if (needed_us > unix_us) {
+      spdlog::warn(
+          "signing: a stored signing timestamp is {:.3f} s ahead of the wall clock; signing "
+          "continues from it",
+          static_cast<double>(needed_us - unix_us) / 1e6);
+      unix_us = needed_us;
+    }
+  }
+  bridge_.set_wall_clock(io::host_now(), unix_us);
+}
+
+void Daemon::open_links() {
+  const auto& vehicles = settings_.config.vehicles;
+  vehicles_.reserve(vehicles.size());
+  for (std::size_t i = 0; i < vehicles.size(); ++i) {
+    vehicles_.push_back(make_vehicle_link(loop_, vehicles[i]));
+    auto& link = *vehicles_.back().link;
+    link.start([this, i](const mavlink::FrameView& frame,
+                         core::HostTime t) { on_vehicle_frame(i, frame, t); },
+               [name = vehicles[i].name](io::LinkState state, const std::string& detail) {
+                 if (state == io::LinkState::down) {
+                   spdlog::warn("vehicle {}: link {}: {}", name, io::to_string(state), detail);
+                 } else {
+                   spdlog::info("vehicle {}: link {}: {}", name, io::to_string(state), detail);
+                 }
+               });
+  }
+}
+
+void Daemon::start_source() {
+  source_->start(
+      [this](core::MocapFrame frame, core::HostTime received) {
+        if (queue_.push(QueuedFrame{std::move(frame), received})) {
+          asio::post(loop_, [this] { drain(); });
+        }
+      },
+      [this](sources::SourceState state, const std::string& detail) {
+        asio::post(loop_, [this, state, detail] {
+          if (stopping_) return;
+          const bool connected = state == sources::SourceState::connected;
+          bridge_.on_source_connection(connected);
+          if (state == sources::SourceState::disconnected) {
+            spdlog::warn("source {}: {}{}{}", source_->url(), sources::to_string(state),
+                         detail.empty() ? "" : ": ", detail);
+          } else {
+            spdlog::info("source {}: {}{}{}", source_->url(), sources::to_string(state),
+                         detail.empty() ? "" : ": ", detail);
+          }
+          if (state == sources::SourceState::finished) stop("the source finished");
+        });
+      });
+}
+
+void Daemon::drain() {
+  batch_.clear();
+  queue_.drain(batch_);
+  for (auto& item : batch_) {
+    if (recorder_) recorder_->on_frame(item.frame);
+    dispatch(bridge_.on_frame(item.frame, item.received));
+  }
+  summary_.on_frames(batch_.size());
+}
+
+void Daemon::dispatch(core::BridgeOutput&& out) {
+  const bool recording = recorder_ != nullptr;
+  const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
+  for (const auto& m : out.messages) {
+    if (m.vehicle >= vehicles_.size()) continue;
+    auto& v = vehicles_[m.vehicle];
+    const auto bytes = m.frame.bytes();
+    (void)v.link->send(bytes);
+    if (recording) recorder_->on_mavlink(m.vehicle, unix_us, bytes);
+    if (v.signing) {
+      if (const auto ts = signing_timestamp(bytes)) v.last_signing_10us = *ts;
+    }
+  }
+  for (const auto& e : out.events) summary_.on_event(e, io::host_now());
+}
+
+void Daemon::on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame,
+                              core::HostTime t) {
+  if (stopping_) return;
+  if (recorder_) recorder_->on_mavlink(vehicle, io::unix_now_us(), frame.bytes);
+  const auto message = mavlink::decode_message(frame);
+  if (!message) return;  // unknown id: counted by the parser, nothing for the core
+  dispatch(bridge_.on_vehicle_message(
+      vehicle, core::ReceivedMessage{frame.sysid, frame.compid, *message}, t));
+}
+
+void Daemon::save_signing() {
+  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+    const auto& v = vehicles_[i];
+    if (!v.signing || v.last_signing_10us == 0) continue;
+    std::string problem;
+    if (!store_.save(settings_.config.vehicles[i].name, v.last_signing_10us, &problem)) {
+      spdlog::warn("signing: cannot persist the timestamp: {}", problem);
+    }
+  }
+}
+
+void Daemon::stop(const std::string& reason) {
+  if (stopping_) return;
+  spdlog::info("stopping: {}", reason);
+  // 1. No more frames: join the source thread, then handle what it queued.
+  source_->stop();
+  drain();
+  stopping_ = true;
+  tick_timer_.cancel();
+  flush_timer_.cancel();
+  signing_timer_.cancel();
+  summary_timer_.cancel();
+  // 2. Persist, report, close files. UDP sends were synchronous, so they have left already.
+  save_signing();
+  summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(), true);
+  if (recorder_) {
+    recorder_->close();
+    spdlog::info("recording: {} frames in {}{}", recorder_->frames_written(),
+                 recorder_->dir().string(), recorder_->failed() ? " (WRITE ERRORS)" : "");
+  }
+  // 3. Stream links get a bounded time to write their backlog; then the loop ends.
+  for (auto& v : vehicles_) v.link->close(kLinger);
+  stop_timer_.expires_after(kLinger + 50ms);
+  stop_timer_.async_wait([this](const std::error_code&) { loop_.stop(); });
+}
+
+int Daemon::run() {
+  io::StopSignals signals(loop_, [this](int signal_number, int count) {
+    if (count == 1) {
+      stop(signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+    } else {
+      spdlog::warn("second signal: stopping now");
+      loop_.stop();
+    }
+  });
+  restore_signing();
+  open_links();
+  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+    summary_.describe_vehicle(settings_.config.vehicles[i], *vehicles_[i].link);
+  }
+  start_source();
+  every(tick_timer_, kTickPeriod, [this] { dispatch(bridge_.on_tick(io::host_now())); });
+  every(flush_timer_, kFlushPeriod, [this] {
+    if (recorder_) recorder_->flush();
+  });
+  every(signing_timer_, kSigningSavePeriod, [this] { save_signing(); });
+  every(summary_timer_, settings_.summary_period, [this] {
+    summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(), false);
+  });
+  dispatch(bridge_.on_tick(io::host_now()));  // first heartbeats at once
+  loop_.run();
+  source_->stop();  // idempotent; covers a loop stopped by a second signal
+  return kExitClean;
+}
+
+}  // namespace
+
+int run_daemon(const DaemonSettings& settings) {
+  std::string error;
+  const auto bridge_config = make_bridge_config(settings.config, error);
+  if (!bridge_config) {
+    spdlog::error("configuration: {}", error);
+    return kExitBadInput;
+  }
+  auto made = core::Bridge::make(*bridge_config, io::host_now());
+  if (const auto* e = std::get_if<core::BridgeConfigError>(&made)) {
+    spdlog::error("configuration: {}: {}", e->field, e->message);
+    return kExitBadInput;
+  }
+  auto source = sources::make_source(settings.config.mocap.source.text);
+  if (const auto* e = std::get_if<std::string>(&source)) {
+    spdlog::error("source {}: {}", settings.config.mocap.source.text, *e);
+    return kExitBadInput;
+  }
+  std::unique_ptr<Recorder> recorder;
+  if (settings.record_dir) {
+    std::vector<std::string> names;
+    for (const auto& v : settings.config.vehicles) names.push_back(v.name);
+    recorder =
+        Recorder::create(*settings.record_dir, settings.config.mocap.source.text, names, &error);
+    if (!recorder) {
+      spdlog::error("--record: {}", error);
+      return kExitRuntime;
+    }
+    spdlog::info("recording to {}", settings.record_dir->string());
+  }
+  Daemon daemon(settings, std::move(std::get<core::Bridge>(made)),
+                std::move(std::get<std::unique_ptr<sources::Source>>(source)), std::move(recorder));
+  return daemon.run();
+}
+
+}  // namespace mocaplink::app

@@ -1,0 +1,31 @@
+// The `mocaplink run` daemon: one event loop (standalone Asio) owning the core Bridge, one Link per
+// vehicle, the mocap Source on its own thread feeding a bounded queue, optional recording, signing
+// timestamp persistence, periodic summaries and a clean stop on SIGINT/SIGTERM (docs/daemon.md).
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+
+#include "mocaplink/config/config.hpp"
+
+namespace mocaplink::app {
+
+/// Exit codes of `mocaplink run` (commands.hpp, docs/daemon.md).
+inline constexpr int kExitClean = 0;     ///< stopped by a signal, or the source finished
+inline constexpr int kExitBadInput = 1;  ///< bad config / CLI / source URL; nothing was sent
+inline constexpr int kExitRuntime = 2;   ///< an I/O failure at start-up (files, ports)
+
+struct DaemonSettings {
+  config::Config config;
+  std::optional<std::filesystem::path> record_dir;  ///< --record DIR
+  std::filesystem::path state_dir;                  ///< signing timestamps (io::SigningStore)
+  std::chrono::milliseconds summary_period{std::chrono::seconds(10)};
+  bool http_requested = false;  ///< --http given (the dashboard is not built in yet)
+};
+
+/// Runs until SIGINT/SIGTERM (or the source finishes) and returns the exit code. Logs go to the
+/// default spdlog logger.
+[[nodiscard]] int run_daemon(const DaemonSettings& settings);
+
+}  // namespace mocaplink::app

@@ -1,0 +1,26 @@
+// One io::Link per configured vehicle (DESIGN.md "Link URLs"), plus what the daemon tracks per
+// link: whether it signs, and the last signing timestamp it sent (persisted, io/signing_store.hpp).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include <asio/io_context.hpp>
+
+#include "mocaplink/config/config.hpp"
+#include "mocaplink/io/link.hpp"
+
+namespace mocaplink::app {
+
+struct VehicleLink {
+  std::unique_ptr<io::Link> link;
+  bool signing = false;                 ///< the vehicle has a signing key
+  std::uint64_t last_signing_10us = 0;  ///< timestamp of the latest signed frame sent (0: none)
+};
+
+/// Builds (does not start) the vehicle's link. With a signing key, incoming frames are verified
+/// and unsigned ones rejected. For serial links, logs a warning when the profile's traffic
+/// (profile_bytes_per_second) exceeds what the baud rate carries (baud / 10 bytes/s).
+[[nodiscard]] VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& vehicle);
+
+}  // namespace mocaplink::app

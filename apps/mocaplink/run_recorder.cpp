@@ -1,0 +1,98 @@
+#include "run_recorder.hpp"
+
+#include <cerrno>
+#include <system_error>
+#include <utility>
+
+#include "mocaplink/wire/recording_csv.hpp"
+
+namespace mocaplink::app {
+
+std::unique_ptr<Recorder> Recorder::create(const std::filesystem::path& dir,
+                                           const std::string& source_url,
+                                           const std::vector<std::string>& vehicles,
+                                           std::string* problem) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    if (problem != nullptr) *problem = dir.string() + ": " + ec.message();
+    return nullptr;
+  }
+  std::unique_ptr<Recorder> recorder(new Recorder(dir, source_url));
+  const auto csv_path = dir / "mocap.csv";
+  recorder->csv_ = std::fopen(csv_path.c_str(), "wb");
+  if (recorder->csv_ == nullptr) {
+    if (problem != nullptr) {
+      *problem =
+          csv_path.string() + ": " + std::error_code(errno, std::generic_category()).message();
+    }
+    return nullptr;
+  }
+  for (const auto& name : vehicles) {
+    auto tlog = io::TlogWriter::create(dir / (name + ".tlog"), problem);
+    if (!tlog) return nullptr;
+    recorder->tlogs_.push_back(std::move(tlog));
+  }
+  return recorder;
+}
+
+Recorder::Recorder(std::filesystem::path dir, std::string source_url)
+    : dir_(std::move(dir)), source_url_(std::move(source_url)) {}
+
+Recorder::~Recorder() {
+  close();
+}
+
+void Recorder::write_header(std::optional<double> rate_hz) {
+  if (header_written_ || csv_ == nullptr) return;
+  header_written_ = true;
+  const std::string header = wire::format_recording_header(source_url_, rate_hz);
+  if (std::fwrite(header.data(), 1, header.size(), csv_) != header.size()) csv_failed_ = true;
+}
+
+void Recorder::on_frame(const core::MocapFrame& frame) {
+  if (csv_ == nullptr || csv_failed_) return;
+  if (last_capture_ && frame.capture_time < *last_capture_) {
+    ++frames_skipped_;
+    return;
+  }
+  write_header(frame.frame_rate_hz);
+  if (!first_capture_) first_capture_ = frame.capture_time;
+  last_capture_ = frame.capture_time;
+  const std::string rows = wire::format_recording_frame(frame, *first_capture_);
+  if (std::fwrite(rows.data(), 1, rows.size(), csv_) != rows.size()) {
+    csv_failed_ = true;
+    return;
+  }
+  ++frames_written_;
+}
+
+void Recorder::on_mavlink(std::size_t vehicle, std::int64_t unix_us,
+                          std::span<const std::uint8_t> bytes) {
+  if (vehicle < tlogs_.size()) tlogs_[vehicle]->write(unix_us, bytes);
+}
+
+void Recorder::flush() {
+  if (csv_ != nullptr && !csv_failed_ && std::fflush(csv_) != 0) csv_failed_ = true;
+  for (auto& tlog : tlogs_) tlog->flush();
+}
+
+void Recorder::close() {
+  if (csv_ != nullptr) {
+    write_header(std::nullopt);  // a run without frames still leaves a readable recording
+    flush();
+    if (std::fclose(csv_) != 0) csv_failed_ = true;
+    csv_ = nullptr;
+  }
+  for (auto& tlog : tlogs_) tlog->close();
+}
+
+bool Recorder::failed() const noexcept {
+  if (csv_failed_) return true;
+  for (const auto& tlog : tlogs_) {
+    if (tlog->failed()) return true;
+  }
+  return false;
+}
+
+}  // namespace mocaplink::app

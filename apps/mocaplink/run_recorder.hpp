@@ -1,0 +1,66 @@
+// `mocaplink run --record DIR`: what the bridge saw and said, in formats other tools open.
+//   DIR/mocap.csv      every mocap frame, DESIGN.md "Recording format" (replay://DIR/mocap.csv)
+//   DIR/<vehicle>.tlog everything sent to and received from that vehicle, one .tlog record per
+//                      MAVLink frame (io/tlog.hpp; MAVProxy, MAVExplorer, pymavlink read it)
+// DIR is created if needed; files of an earlier recording with the same names are replaced.
+// Files are written through user-space buffers, flushed by flush() (the daemon calls it every
+// second) and on close(), so a clean stop leaves complete files and a crash loses at most about a
+// second. Not thread-safe (event loop only).
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mocaplink/core/mocap_frame.hpp"
+#include "mocaplink/io/tlog.hpp"
+
+namespace mocaplink::app {
+
+class Recorder {
+ public:
+  /// Creates DIR and opens every file. nullptr with `*problem` set on an I/O error.
+  [[nodiscard]] static std::unique_ptr<Recorder> create(const std::filesystem::path& dir,
+                                                        const std::string& source_url,
+                                                        const std::vector<std::string>& vehicles,
+                                                        std::string* problem);
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  /// One mocap frame. Frames whose capture time goes back (a restarted server) are skipped and
+  /// counted: the format requires time_s never to decrease.
+  void on_frame(const core::MocapFrame& frame);
+  /// One MAVLink frame sent to or received from vehicle `vehicle`, at Unix time `unix_us`.
+  void on_mavlink(std::size_t vehicle, std::int64_t unix_us, std::span<const std::uint8_t> bytes);
+  void flush();
+  /// Flushes and closes every file (idempotent; the destructor calls it).
+  void close();
+
+  [[nodiscard]] std::uint64_t frames_written() const noexcept { return frames_written_; }
+  [[nodiscard]] std::uint64_t frames_skipped() const noexcept { return frames_skipped_; }
+  [[nodiscard]] bool failed() const noexcept;
+  [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
+
+ private:
+  Recorder(std::filesystem::path dir, std::string source_url);
+  void write_header(std::optional<double> rate_hz);
+
+  std::filesystem::path dir_;
+  std::string source_url_;
+  std::FILE* csv_ = nullptr;
+  bool csv_failed_ = false;
+  bool header_written_ = false;
+  std::optional<core::SourceTime> first_capture_;
+  std::optional<core::SourceTime> last_capture_;
+  std::vector<std::unique_ptr<io::TlogWriter>> tlogs_;
+  std::uint64_t frames_written_ = 0;
+  std::uint64_t frames_skipped_ = 0;
+};
+
+}  // namespace mocaplink::app

@@ -1,0 +1,56 @@
+// What `mocaplink run` says on stderr while it runs: one line per vehicle at start, the core's
+// events (rate-limited per subject), and a periodic summary (source frames and drops, per-vehicle
+// pose rate, sent and dropped frames, link and vehicle state). With more than kDetailedVehicles
+// vehicles the periodic summary aggregates, and lists only vehicles with problems.
+// Not thread-safe (event loop only).
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mocaplink/config/config.hpp"
+#include "mocaplink/core/bridge.hpp"
+#include "run_links.hpp"
+
+namespace mocaplink::app {
+
+inline constexpr std::size_t kDetailedVehicles = 10;
+
+class Summary {
+ public:
+  Summary(const config::Config& config, std::chrono::milliseconds period);
+
+  /// The start-up line of one vehicle.
+  void describe_vehicle(const config::Vehicle& vehicle, const io::Link& link) const;
+  void on_frames(std::size_t frames) { frames_ += frames; }
+  /// Logs a core event, at most one per (kind, subject) per second; the rest are counted and
+  /// mentioned with the next one logged.
+  void on_event(const core::BridgeEvent& event, core::HostTime now);
+  /// The periodic (or, with `final`, the last) summary.
+  void log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
+           std::uint64_t queue_overflows, bool final);
+
+ private:
+  struct Limit {
+    core::HostTime last{};
+    std::uint64_t suppressed = 0;
+  };
+  struct Previous {
+    std::uint64_t poses = 0;
+    std::uint64_t frames_sent = 0;
+  };
+
+  const config::Config& config_;
+  std::chrono::milliseconds period_;
+  std::uint64_t frames_ = 0;
+  std::map<std::string, Limit> limits_;
+  std::vector<Previous> previous_;
+  std::optional<core::HostTime> previous_time_;
+};
+
+}  // namespace mocaplink::app
