@@ -103,7 +103,8 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
     }
   } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
     if (mocap != nullptr && mocap->state == TrackingState::tracking) {
-      const Eigen::Vector3d p(pos->x, pos->y, pos->z);
+      const Eigen::Vector3d p(static_cast<double>(pos->x), static_cast<double>(pos->y),
+                              static_cast<double>(pos->z));
       const double offset = (p - mocap->p_ned_m).norm();
       if (std::isfinite(offset)) {
         vehicle_position_offset_m_ = offset;
