@@ -1,0 +1,148 @@
+#include "mocaplink/io/link_udp.hpp"
+
+#include <array>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <asio/ip/udp.hpp>
+
+#include "link_test_support.hpp"
+
+namespace mocaplink::io {
+namespace {
+
+using test::kHeartbeat;
+using test::run_until;
+using udp = asio::ip::udp;
+
+struct Received {
+  std::vector<std::uint32_t> msgids;
+  std::vector<std::uint8_t> sysids;
+};
+
+Link::FrameHandler collect(Received& r) {
+  return [&r](const mavlink::FrameView& f, core::HostTime) {
+    r.msgids.push_back(f.msgid);
+    r.sysids.push_back(f.sysid);
+  };
+}
+
+class Vehicle {
+ public:
+  explicit Vehicle(asio::io_context& loop, std::uint16_t port = 0)
+      : socket_(loop, udp::endpoint(asio::ip::make_address("127.0.0.1"), port)) {
+    receive();
+  }
+  [[nodiscard]] std::uint16_t port() const { return socket_.local_endpoint().port(); }
+  void reply(const std::vector<std::uint8_t>& bytes) {
+    socket_.send_to(asio::buffer(bytes), from_);
+  }
+  std::vector<std::vector<std::uint8_t>> datagrams;
+  udp::endpoint from_;
+
+ private:
+  void receive() {
+    socket_.async_receive_from(asio::buffer(buffer_), from_,
+                               [this](const std::error_code& e, std::size_t n) {
+                                 if (e) return;
+                                 datagrams.emplace_back(buffer_.begin(), buffer_.begin() + n);
+                                 receive();
+                               });
+  }
+  udp::socket socket_;
+  std::array<std::uint8_t, 2048> buffer_{};
+};
+
+TEST(UdpLink, SendsAndReadsRepliesOnTheSameSocket) {
+  asio::io_context loop;
+  Vehicle vehicle(loop);
+  UdpLink link(loop, "127.0.0.1", vehicle.port(), test::options());
+  Received received;
+  link.start(collect(received), {});
+  ASSERT_EQ(link.state(), LinkState::up);
+  EXPECT_EQ(link.url(), "udp://127.0.0.1:" + std::to_string(vehicle.port()));
+
+  ASSERT_TRUE(link.send(kHeartbeat));
+  ASSERT_TRUE(run_until(loop, [&] { return vehicle.datagrams.size() == 1; }));
+  EXPECT_EQ(vehicle.datagrams[0], kHeartbeat);
+  EXPECT_EQ(vehicle.from_.port(), link.local_endpoint().port());
+
+  // Two frames in one datagram, then a corrupted one: two delivered, one bad CRC counted.
+  std::vector<std::uint8_t> two = kHeartbeat;
+  two.insert(two.end(), kHeartbeat.begin(), kHeartbeat.end());
+  vehicle.reply(two);
+  auto bad = kHeartbeat;
+  bad[14] ^= 0xff;
+  vehicle.reply(bad);
+  ASSERT_TRUE(run_until(loop, [&] { return link.counters().parser.bad_crc == 1; }));
+  EXPECT_EQ(received.msgids, (std::vector<std::uint32_t>{0, 0}));
+  const auto c = link.counters();
+  EXPECT_EQ(c.frames_sent, 1u);
+  EXPECT_EQ(c.bytes_sent, kHeartbeat.size());
+  EXPECT_EQ(c.bytes_received, 3 * kHeartbeat.size());
+  EXPECT_EQ(c.connects, 1u);
+}
+
+TEST(UdpLink, SurvivesPortUnreachableAndDeliversOnceSomeoneListens) {
+  asio::io_context loop;
+  std::uint16_t port = 0;
+  {
+    udp::socket probe(loop, udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+    port = probe.local_endpoint().port();
+  }  // closed: nobody listens on `port` now, so the kernel answers with ICMP port unreachable
+  UdpLink link(loop, "127.0.0.1", port, test::options());
+  link.start({}, {});
+  ASSERT_TRUE(run_until(loop, [&] {
+    (void)link.send(kHeartbeat);
+    return link.counters().refused > 0;
+  }));
+  EXPECT_EQ(link.state(), LinkState::up);
+  EXPECT_EQ(link.counters().send_errors, 0u);
+
+  Vehicle vehicle(loop, port);
+  ASSERT_TRUE(run_until(loop, [&] {
+    (void)link.send(kHeartbeat);
+    return !vehicle.datagrams.empty();
+  }));
+  EXPECT_EQ(vehicle.datagrams.front(), kHeartbeat);
+}
+
+TEST(UdpLink, SigningPolicyDropsUnsignedAndForgedFrames) {
+  asio::io_context loop;
+  Vehicle vehicle(loop);
+  auto key = mavlink::SigningKey::from_hex(
+      "8432859ef025d9e9cc87af154935c5b92b88b787c9bff024595d45ccf5dca144");
+  ASSERT_TRUE(key.has_value());
+  UdpLink link(loop, "127.0.0.1", vehicle.port(),
+               test::options(std::chrono::milliseconds(250), std::chrono::milliseconds(4000), key));
+  Received received;
+  link.start(collect(received), {});
+  ASSERT_TRUE(link.send(kHeartbeat));
+  ASSERT_TRUE(run_until(loop, [&] { return !vehicle.datagrams.empty(); }));
+
+  vehicle.reply(kHeartbeat);  // unsigned
+  auto forged = test::kHeartbeatSigned;
+  forged.back() ^= 0x01;  // signature byte: CRC still valid
+  vehicle.reply(forged);
+  ASSERT_TRUE(run_until(loop, [&] {
+    const auto p = link.counters().parser;
+    return p.unsigned_rejected == 1 && p.bad_signature == 1;
+  }));
+  EXPECT_TRUE(received.msgids.empty());
+}
+
+TEST(UdpLink, UnresolvableHostIsDownAndDropsFrames) {
+  asio::io_context loop;
+  UdpLink link(loop, "no-such-host.invalid", 14550, test::options(std::chrono::milliseconds(10)));
+  std::vector<LinkState> states;
+  link.start({}, [&](LinkState s, const std::string&) { states.push_back(s); });
+  EXPECT_EQ(link.state(), LinkState::down);
+  EXPECT_FALSE(link.send(kHeartbeat));
+  EXPECT_EQ(link.counters().dropped_down, 1u);
+  link.close(std::chrono::milliseconds(0));
+  EXPECT_EQ(link.state(), LinkState::closed);
+  EXPECT_EQ(states.back(), LinkState::closed);
+}
+
+}  // namespace
+}  // namespace mocaplink::io
