@@ -40,9 +40,9 @@ constexpr auto kFlushPeriod = 1s;
 constexpr auto kSigningSavePeriod = 30s;
 /// How long a stop waits for stream links to write what they queued.
 constexpr auto kLinger = 250ms;
-/// Frames waiting between the source thread and the loop; ~1 s at 1 kHz. Overflow drops the
+/// Frames waiting between the source thread and the loop; ~1 s at 240 Hz. Overflow drops the
 /// oldest (io/bounded_queue.hpp) and is reported in the summary.
-constexpr std::size_t kQueueCapacity = 1024;
+constexpr std::size_t kQueueCapacity = 256;
 
 struct QueuedFrame {
   core::MocapFrame frame;

@@ -38,6 +38,8 @@ TEST(TcpLink, ReconnectsAfterTheServerClosesAndDropsFramesWhileDown) {
   // Out: two frames arrive byte-exact, in order.
   ASSERT_TRUE(link.send(kHeartbeat));
   ASSERT_TRUE(link.send(kHeartbeat));
+  // The link writes asynchronously: let the loop run before blocking on the server side.
+  ASSERT_TRUE(run_until(loop, [&] { return link.counters().frames_sent == 2; }));
   std::vector<std::uint8_t> got(2 * kHeartbeat.size());
   asio::read(*server, asio::buffer(got));
   EXPECT_TRUE(std::equal(kHeartbeat.begin(), kHeartbeat.end(), got.begin()));
@@ -55,10 +57,10 @@ TEST(TcpLink, ReconnectsAfterTheServerClosesAndDropsFramesWhileDown) {
   ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::up && server; }));
   EXPECT_EQ(link.counters().connects, 2u);
   ASSERT_TRUE(link.send(kHeartbeat));
+  ASSERT_TRUE(run_until(loop, [&] { return link.counters().frames_sent == 3; }));
   std::vector<std::uint8_t> again(kHeartbeat.size());
   asio::read(*server, asio::buffer(again));
   EXPECT_EQ(again, kHeartbeat);
-  ASSERT_TRUE(run_until(loop, [&] { return link.counters().frames_sent == 3; }));
 
   link.close(std::chrono::milliseconds(100));
   EXPECT_EQ(link.state(), LinkState::closed);

@@ -1,0 +1,5 @@
+# bench/e2e: end-to-end throughput and latency of `mocaplink run` (sim:// → run → N UDP receivers).
+# Not a test: run bench/e2e/run_e2e.sh $<TARGET_FILE:mocaplink> $<TARGET_FILE:e2e_receivers> and
+# copy the table into docs/performance.md ("End to end").
+add_executable(e2e_receivers ${CMAKE_CURRENT_SOURCE_DIR}/e2e/e2e_receivers.cpp)
+mocaplink_warnings(e2e_receivers)

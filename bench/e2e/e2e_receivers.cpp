@@ -1,0 +1,144 @@
+// bench/e2e receivers: N UDP "vehicles" on loopback for `mocaplink run`. Binds N sockets, writes a
+// run configuration (sim:// source at --mocap-hz, one px4 vehicle per socket at --rate-hz, bodies
+// shared round-robin), then counts every ODOMETRY per socket and its latency: CLOCK_MONOTONIC at
+// receive − the frame's time_usec (the pose's capture time on the bridge's steady clock, which is
+// CLOCK_MONOTONIC too: one host clock, docs/performance.md "End to end"). Stops when nothing has
+// arrived for 1.5 s after the first datagram (the bridge was stopped), and prints one JSON line.
+// Usage: e2e_receivers --vehicles N --config OUT.toml [--seconds 30] [--rate-hz 240]
+//                      [--mocap-hz 240] [--bodies 64]
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/epoll.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+std::int64_t monotonic_us() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
+}
+
+double percentile(std::vector<std::int64_t>& v, double p) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(p * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return static_cast<double>(v[k]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int vehicles = 1;
+  double seconds = 30.0;
+  double rate_hz = 240.0;
+  double mocap_hz = 240.0;
+  int bodies = 64;
+  std::string config_path;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string key = argv[i];
+    const char* value = argv[i + 1];
+    if (key == "--vehicles") vehicles = std::atoi(value);
+    if (key == "--seconds") seconds = std::atof(value);
+    if (key == "--rate-hz") rate_hz = std::atof(value);
+    if (key == "--mocap-hz") mocap_hz = std::atof(value);
+    if (key == "--bodies") bodies = std::atoi(value);
+    if (key == "--config") config_path = value;
+  }
+  if (vehicles < 1 || config_path.empty()) {
+    std::fprintf(stderr, "usage: e2e_receivers --vehicles N --config OUT.toml [...]\n");
+    return 1;
+  }
+  bodies = std::min(bodies, vehicles);
+  const int epoll = ::epoll_create1(0);
+  std::vector<int> sockets;
+  std::FILE* config = std::fopen(config_path.c_str(), "w");
+  if (config == nullptr) return 1;
+  std::fprintf(config, "[mocap]\nsource = \"sim://?bodies=%d&rate_hz=%g\"\n", bodies, mocap_hz);
+  for (int i = 0; i < vehicles; ++i) {
+    const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
+    const int buffer = 1 << 20;
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof addr;
+    if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
+        ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+      std::perror("bind");
+      return 1;
+    }
+    epoll_event ev{};
+    ev.events = EPOLLIN;
+    ev.data.u32 = static_cast<std::uint32_t>(i);
+    ::epoll_ctl(epoll, EPOLL_CTL_ADD, fd, &ev);
+    sockets.push_back(fd);
+    std::fprintf(config,
+                 "[[vehicle]]\nname = \"v%d\"\nbody = \"Body%d\"\nlink = \"udp://127.0.0.1:%d\"\n"
+                 "system_id = %d\nprofile = \"px4\"\nrate_hz = %g\n",
+                 i + 1, i % bodies + 1, ntohs(addr.sin_port), i % 250 + 1, rate_hz);
+  }
+  std::fclose(config);
+  std::printf("ready\n");
+  std::fflush(stdout);
+
+  std::vector<std::uint64_t> odometry(static_cast<std::size_t>(vehicles), 0);
+  std::vector<std::int64_t> latencies_us;
+  latencies_us.reserve(static_cast<std::size_t>(vehicles * rate_hz * seconds * 1.1));
+  std::array<epoll_event, 256> events{};
+  std::array<std::uint8_t, 2048> buffer{};
+  std::int64_t first_us = 0;
+  std::int64_t last_us = 0;
+  while (first_us == 0 || monotonic_us() - last_us < 1'500'000) {
+    const int n = ::epoll_wait(epoll, events.data(), static_cast<int>(events.size()), 100);
+    for (int e = 0; e < n; ++e) {
+      const std::uint32_t v = events[static_cast<std::size_t>(e)].data.u32;
+      while (true) {
+        const ssize_t got = ::recv(sockets[v], buffer.data(), buffer.size(), 0);
+        if (got <= 0) break;
+        const std::int64_t now_us = monotonic_us();
+        if (first_us == 0) first_us = now_us;
+        last_us = now_us;
+        // MAVLink 2 ODOMETRY (id 331): time_usec is the first payload field (uint64 LE, at 10).
+        if (got < 18 || buffer[0] != 0xFD) continue;
+        const std::uint32_t msgid = std::uint32_t{buffer[7]} | (std::uint32_t{buffer[8]} << 8) |
+                                    (std::uint32_t{buffer[9]} << 16);
+        if (msgid != 331) continue;
+        std::uint64_t time_usec = 0;
+        for (std::size_t b = 0; b < 8; ++b) time_usec |= std::uint64_t{buffer[10 + b]} << (8 * b);
+        ++odometry[v];
+        latencies_us.push_back(now_us - static_cast<std::int64_t>(time_usec));
+      }
+    }
+  }
+  std::uint64_t total = 0;
+  std::uint64_t min_v = odometry[0];
+  for (const auto c : odometry) {
+    total += c;
+    min_v = std::min(min_v, c);
+  }
+  const double max_latency =
+      latencies_us.empty()
+          ? 0.0
+          : static_cast<double>(*std::max_element(latencies_us.begin(), latencies_us.end()));
+  const double p50 = percentile(latencies_us, 0.50);
+  const double p99 = percentile(latencies_us, 0.99);
+  seconds = static_cast<double>(last_us - first_us) / 1e6;
+  std::printf(
+      "{\"vehicles\":%d,\"seconds\":%.1f,\"odometry\":%llu,\"min_per_vehicle\":%llu,"
+      "\"latency_us\":{\"p50\":%.0f,\"p99\":%.0f,\"max\":%.0f}}\n",
+      vehicles, seconds, static_cast<unsigned long long>(total),
+      static_cast<unsigned long long>(min_v), p50, p99, max_latency);
+  return 0;
+}
