@@ -47,7 +47,7 @@ Euler321 euler_321_from_quaternion(const Eigen::Quaterniond& q_ned_frd) {
   if (std::abs(sin_pitch) > 1.0 - 1e-12) {
     // Gimbal lock: only yaw -/+ roll is defined; put it all in yaw (roll = 0).
     e.roll_rad = 0.0;
-    // With roll = 0, R01 = -sin(yaw) (pitch +90) or -sin(yaw) (pitch -90), R11 = cos(yaw).
+    // With roll = 0 and pitch = +-90 deg: R01 = -sin(yaw), R11 = cos(yaw).
     e.yaw_rad = std::atan2(-2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z));
   } else {
     e.roll_rad = std::atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y));
