@@ -70,17 +70,31 @@ std::optional<Value> to_value(const toml::node& node, ValueType type, Where wher
   bool ok = false;
   switch (type) {
     case ValueType::string:
-      if (const auto* s = node.as_string()) value.data = s->get(), ok = true;
+      if (const auto* s = node.as_string()) {
+        value.data = s->get();
+        ok = true;
+      }
       break;
     case ValueType::integer:
-      if (const auto* i = node.as_integer()) value.data = i->get(), ok = true;
+      if (const auto* i = node.as_integer()) {
+        value.data = i->get();
+        ok = true;
+      }
       break;
     case ValueType::number:
-      if (const auto* i = node.as_integer()) value.data = static_cast<double>(i->get()), ok = true;
-      if (const auto* f = node.as_floating_point()) value.data = f->get(), ok = true;
+      if (const auto* i = node.as_integer()) {
+        value.data = static_cast<double>(i->get());
+        ok = true;
+      } else if (const auto* f = node.as_floating_point()) {
+        value.data = f->get();
+        ok = true;
+      }
       break;
     case ValueType::boolean:
-      if (const auto* b = node.as_boolean()) value.data = b->get(), ok = true;
+      if (const auto* b = node.as_boolean()) {
+        value.data = b->get();
+        ok = true;
+      }
       break;
     case ValueType::string_list:
       if (const auto* array = node.as_array()) {

@@ -1,5 +1,6 @@
 // Entry points: TOML text (+ command-line overrides) → validated Config, every problem at once.
-// Pure: the caller reads the file and passes its text and display name.
+// Pure: the caller reads the file and passes its text and display name. Every function here is
+// reentrant and thread-safe (no shared state); none throws for bad input.
 #pragma once
 
 #include <optional>

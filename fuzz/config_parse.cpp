@@ -1,0 +1,77 @@
+// Fuzz target: configuration text → parse_config, and every line of the input as a --vehicle SPEC,
+// --source URL, --http ADDR and link URL (libs/config). Beyond "no crash", it checks the library's
+// contract: a Config exists exactly when there are no errors, every error has a message and a
+// sane position, and every accepted Config satisfies the documented ranges and rules.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mocaplink/config/demo.hpp"
+#include "mocaplink/config/load.hpp"
+
+namespace {
+
+using mocaplink::config::Config;
+using mocaplink::config::ConfigResult;
+
+void require(bool condition) {
+  if (!condition) std::abort();
+}
+
+void check_config(const Config& c) {
+  require(mocaplink::config::are_perpendicular(c.mocap.body_forward, c.mocap.body_up));
+  if (const auto* north = std::get_if<mocaplink::config::Axis>(&c.mocap.north)) {
+    require(mocaplink::config::are_perpendicular(c.mocap.up, *north));
+  }
+  for (std::size_t i = 0; i < c.vehicles.size(); ++i) {
+    const auto& v = c.vehicles[i];
+    require(!v.name.empty() && v.name.size() <= 64 && !v.body.empty());
+    require(v.system_id >= 1 && v.component_id >= 2);
+    require(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::config::kMaxRateHz);
+    require(mocaplink::config::are_perpendicular(v.body_forward, v.body_up));
+    require((v.profile == mocaplink::config::Profile::custom) == !v.messages.empty());
+    for (std::size_t j = 0; j < i; ++j) {
+      require(c.vehicles[j].name != v.name);
+      require(!(c.vehicles[j].link == v.link && c.vehicles[j].system_id == v.system_id));
+    }
+  }
+  if (!mocaplink::config::is_loopback(c.http.listen.host)) require(c.http.token.size() >= 16);
+}
+
+void check_result(const ConfigResult& result) {
+  require(result.ok() == result.errors.empty());
+  for (const auto& e : result.errors)
+    require(!e.message.empty() && (e.line == 0) == (e.column == 0));
+  if (result.config) check_config(*result.config);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  check_result(mocaplink::config::parse_config(text, "fuzz.toml"));
+
+  // The same bytes as command-line options, one per line (at most 8 lines).
+  mocaplink::config::CommandLineOverrides overrides;
+  std::size_t start = 0;
+  while (start < text.size() && overrides.vehicles.size() < 8) {
+    const auto end = std::min(text.find('\n', start), text.size());
+    const std::string line(text.substr(start, end - start));
+    (void)mocaplink::config::parse_source_url(line);
+    (void)mocaplink::config::parse_link_url(line);
+    (void)mocaplink::config::parse_north(line);
+    overrides.vehicles.push_back(line);
+    start = end + 1;
+  }
+  if (!overrides.vehicles.empty()) {
+    overrides.source = overrides.vehicles.front();
+    overrides.http = overrides.vehicles.back();
+  }
+  check_result(mocaplink::config::apply_overrides(mocaplink::config::demo_config(), overrides));
+  check_result(mocaplink::config::load_config(text, "fuzz.toml", overrides));
+  return 0;
+}
