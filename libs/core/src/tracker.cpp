@@ -75,6 +75,16 @@ SampleOutcome Tracker::on_sample(SourceTime capture_time, const BodySample& samp
 }
 
 bool Tracker::accept_time(SourceTime capture_time) {
+  if (last_input_time_ &&
+      to_seconds(*last_input_time_ - capture_time) > ms_to_s(config_.reset_after_ms)) {
+    // Far backwards: the source's clock restarted (mocap server restarted, recording looped),
+    // not a late frame. Forget the old time line: lost now, restarted at the next valid sample.
+    clock_restarted_ = true;
+    if (estimate_.state == TrackingState::tracking) estimate_.state = TrackingState::lost;
+    last_valid_time_ = capture_time;
+    last_input_time_ = capture_time;
+    return true;
+  }
   if (last_input_time_ && capture_time <= *last_input_time_) {
     ++estimate_.counters.invalid_input[static_cast<std::size_t>(InvalidInput::time_not_increasing)];
     estimate_.last_outcome = SampleOutcome::invalid_input;
@@ -134,7 +144,8 @@ SampleOutcome Tracker::on_pose_ned(SourceTime capture_time, const Eigen::Vector3
   if (!initialised_) {
     start(capture_time, p_ned_m, q_ned_frd, false);
     outcome = SampleOutcome::initialised;
-  } else if (to_seconds(capture_time - last_valid_time_) > ms_to_s(config_.reset_after_ms)) {
+  } else if (clock_restarted_ ||
+             to_seconds(capture_time - last_valid_time_) > ms_to_s(config_.reset_after_ms)) {
     start(capture_time, p_ned_m, q_ned_frd, false);
     outcome = SampleOutcome::reset;
   } else {
@@ -214,6 +225,7 @@ void Tracker::start(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
     ++estimate_.counters.resets;
   }
   initialised_ = true;
+  clock_restarted_ = false;
   filter_time_ = capture_time;
   last_valid_time_ = capture_time;
   jump_count_ = 0;

@@ -276,6 +276,22 @@ TEST(Tracker, RefusesNonIncreasingTime) {
   EXPECT_EQ(t.on_pose_ned(ms(100), {0.1, 0, 0}, kLevel), SampleOutcome::accepted);
 }
 
+TEST(Tracker, SourceClockRestartResetsInsteadOfRefusingForever) {
+  Tracker t;
+  fly(t, 0, 300, {0, 0, 0}, {0, 0, 0});  // last at 2990 ms
+  // 500 ms back (< reset_after_ms 1000): a late frame, refused.
+  EXPECT_EQ(t.on_pose_ned(ms(2490), {0, 0, 0}, kLevel), SampleOutcome::invalid_input);
+  // The server restarted: its clock is back near zero. Lost at once, reset at the next sample.
+  EXPECT_EQ(t.on_missing(ms(5)), SampleOutcome::untracked);
+  EXPECT_EQ(t.estimate().state, TrackingState::lost);
+  EXPECT_FALSE(t.estimate().pose_valid());
+  EXPECT_EQ(t.on_pose_ned(ms(15), {0.5, 0, 0}, kLevel), SampleOutcome::reset);
+  EXPECT_EQ(t.estimate().reset_counter, 1);
+  EXPECT_EQ(t.estimate().state, TrackingState::tracking);
+  EXPECT_EQ(t.on_pose_ned(ms(25), {0.5, 0, 0}, kLevel), SampleOutcome::accepted);
+  EXPECT_EQ(t.estimate().counters.invalid(InvalidInput::time_not_increasing), 1u);
+}
+
 TEST(Tracker, RefusesNonFiniteAndNonUnitInputWithReasons) {
   Tracker t;
   fly(t, 0, 10, {0, 0, 0}, {0, 0, 0});

@@ -5,7 +5,10 @@
 // Input: BodySample in the source's world frame (metres, q_world_body), mapped to NED/FRD by the
 // AxisMapping given at construction; or a pose already in NED/FRD (on_pose_ned).
 // Time: SourceTime capture timestamps only; the Tracker never reads a clock. Each call must carry a
-// capture time later than the previous call's, otherwise the input is refused and counted.
+// capture time later than the previous call's, otherwise the input is refused and counted
+// (duplicate or out-of-order frame) — except a step back of more than reset_after_ms, which is
+// taken as a restart of the source's clock: the body turns LOST and the next valid sample
+// re-initialises the filter (reset_counter++).
 // Not thread-safe: one owner (the Station) calls it; copy estimate() to share.
 #pragma once
 
@@ -121,6 +124,7 @@ class Tracker {
   PositionFilter position_;
   AttitudeFilter attitude_;
   bool initialised_ = false;
+  bool clock_restarted_ = false;               ///< capture time jumped back > reset_after_ms
   std::optional<SourceTime> last_input_time_;  ///< last accepted capture time of any call
   SourceTime filter_time_{};                   ///< time the filter state refers to
   SourceTime last_valid_time_{};               ///< last valid (finite, unit) sample
