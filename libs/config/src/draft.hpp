@@ -96,6 +96,13 @@ struct ConfigDraft {
   Field<double> altitude_m;
   std::vector<VehicleDraft> vehicles;
   TrackingSettings tracking;
+  /// Where each [tracking] key was set: {bare name, place, displayed key}.
+  struct TrackingSite {
+    std::string name;
+    Where where;
+    std::string key;
+  };
+  std::vector<TrackingSite> tracking_sites;
   Field<HostPort> listen;
   Field<std::string> token;
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")

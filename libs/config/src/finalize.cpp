@@ -5,6 +5,7 @@
 #include <string>
 
 #include "draft.hpp"
+#include "mocaplink/core/tracker.hpp"
 #include "text_util.hpp"
 
 namespace mocaplink::config::detail {
@@ -207,6 +208,37 @@ void cross_check_vehicles(const ConfigDraft& d, Diagnostics& diagnostics) {
   }
 }
 
+/// The tracker's own rules across [tracking] keys (e.g. reset_after_ms ≥ loss_timeout_ms), with
+/// the tracker's defaults for the keys not set, so that `check` rejects what `run` would.
+void check_tracking(const ConfigDraft& d, Diagnostics& diagnostics) {
+  if (d.tracking_sites.empty()) return;
+  const TrackingSettings& t = d.tracking;
+  core::TrackerConfig merged;
+  merged.loss_timeout_ms = t.loss_timeout_ms.value_or(merged.loss_timeout_ms);
+  merged.reset_after_ms = t.reset_after_ms.value_or(merged.reset_after_ms);
+  merged.position_noise_m = t.position_noise_m.value_or(merged.position_noise_m);
+  merged.attitude_noise_rad = t.attitude_noise_rad.value_or(merged.attitude_noise_rad);
+  merged.accel_noise_mps2 = t.accel_noise_mps2.value_or(merged.accel_noise_mps2);
+  merged.angular_accel_noise_radps2 =
+      t.angular_accel_noise_radps2.value_or(merged.angular_accel_noise_radps2);
+  merged.gate_sigma = t.gate_sigma.value_or(merged.gate_sigma);
+  merged.gate_min_m = t.gate_min_m.value_or(merged.gate_min_m);
+  merged.jump_confirm_frames = t.jump_confirm_frames.value_or(merged.jump_confirm_frames);
+  const auto problem = core::validate(merged);
+  if (!problem) return;
+  const auto& sites = d.tracking_sites;
+  auto site = std::find_if(sites.begin(), sites.end(),
+                           [&](const auto& s) { return s.name == problem->field; });
+  if (site == sites.end()) site = sites.begin();  // the rule involves a default value
+  std::string message = problem->message;
+  if (problem->field == "reset_after_ms") {
+    message += " (loss_timeout_ms is " + format_number(merged.loss_timeout_ms) +
+               ", reset_after_ms is " + format_number(merged.reset_after_ms) +
+               "; keys not set take the tracker's defaults)";
+  }
+  diagnostics.error(site->where, "tracking." + problem->field, message);
+}
+
 HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
   HttpSettings http;
   if (d.listen.value) http.listen = *d.listen.value;
@@ -235,6 +267,7 @@ std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
   }
   cross_check_vehicles(d, diagnostics);
   config.tracking = d.tracking;
+  check_tracking(d, diagnostics);
   config.http = finalize_http(d, diagnostics);
   if (d.vehicles.empty()) {
     diagnostics.warning(d.document, "vehicle", "no [[vehicle]] tables: nothing will be sent");

@@ -41,8 +41,15 @@ ValueOrError<std::uint8_t> byte_in(std::int64_t v, std::int64_t low) {
                                              " to 255, got " + std::to_string(v));
 }
 
-void set_optional(std::optional<double>& slot, const Value& value, ValueOrError<double> parsed,
-                  Diagnostics& diagnostics) {
+void note_tracking_site(ConfigDraft& d, const Value& value) {
+  const auto dot = value.key.rfind('.');
+  d.tracking_sites.push_back(
+      {dot == std::string::npos ? value.key : value.key.substr(dot + 1), value.where, value.key});
+}
+
+void set_optional(ConfigDraft& d, std::optional<double>& slot, const Value& value,
+                  ValueOrError<double> parsed, Diagnostics& diagnostics) {
+  note_tracking_site(d, value);
   if (parsed) {
     slot = parsed.value();
   } else {
@@ -99,32 +106,33 @@ constexpr std::array<KeySpec<ConfigDraft>, 3> kOriginKeys = {{
 // ---- [tracking] (sanity bounds only; the core owns the defaults) ----
 
 void tracking_loss(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.loss_timeout_ms, v, number_in(v.number(), 0.0, 60000.0, false), diag);
+  set_optional(d, d.tracking.loss_timeout_ms, v, number_in(v.number(), 0.0, 60000.0, false), diag);
 }
 void tracking_reset(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.reset_after_ms, v, number_in(v.number(), 0.0, 600000.0), diag);
+  set_optional(d, d.tracking.reset_after_ms, v, number_in(v.number(), 0.0, 600000.0), diag);
 }
 void tracking_position_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.position_noise_m, v, number_in(v.number(), 0.0, 10.0, false), diag);
+  set_optional(d, d.tracking.position_noise_m, v, number_in(v.number(), 0.0, 10.0, false), diag);
 }
 void tracking_attitude_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.attitude_noise_rad, v,
+  set_optional(d, d.tracking.attitude_noise_rad, v,
                number_in(v.number(), 0.0, std::numbers::pi, false), diag);
 }
 void tracking_accel_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.accel_noise_mps2, v, number_in(v.number(), 0.0, 1000.0, false), diag);
+  set_optional(d, d.tracking.accel_noise_mps2, v, number_in(v.number(), 0.0, 1000.0, false), diag);
 }
 void tracking_angular_noise(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.angular_accel_noise_radps2, v, number_in(v.number(), 0.0, 10000.0, false),
-               diag);
+  set_optional(d, d.tracking.angular_accel_noise_radps2, v,
+               number_in(v.number(), 0.0, 10000.0, false), diag);
 }
 void tracking_gate_sigma(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.gate_sigma, v, number_in(v.number(), 0.0, 100.0, false), diag);
+  set_optional(d, d.tracking.gate_sigma, v, number_in(v.number(), 0.0, 100.0, false), diag);
 }
 void tracking_gate_min(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  set_optional(d.tracking.gate_min_m, v, number_in(v.number(), 0.0, 100.0), diag);
+  set_optional(d, d.tracking.gate_min_m, v, number_in(v.number(), 0.0, 100.0), diag);
 }
 void tracking_jump_frames(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  note_tracking_site(d, v);
   if (v.integer() >= 1 && v.integer() <= 1000) {
     d.tracking.jump_confirm_frames = static_cast<std::uint32_t>(v.integer());
   } else {

@@ -414,6 +414,10 @@ std::vector<BadCase> bad_cases() {
         "t.toml:6:14: tracking.gate_min_m: must be from 0 to 100, got -1",
         "t.toml:7:22: tracking.attitude_noise_rad: must be above 0 and at most "
         "3.141592653589793, got 4"}},
+      {"TrackingResetBeforeLoss",
+       kMocap + "[tracking]\nloss_timeout_ms = 500\nreset_after_ms = 100\n",
+       {"t.toml:5:18: tracking.reset_after_ms: must be >= loss_timeout_ms (loss_timeout_ms is 500, "
+        "reset_after_ms is 100; keys not set take the tracker's defaults)"}},
       {"TrackingUnknownKey",
        kMocap + "[tracking]\nloss_timeout = 300\n",
        {"t.toml:4:1: tracking.loss_timeout: unknown key; did you mean \"loss_timeout_ms\"?"}},
