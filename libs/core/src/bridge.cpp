@@ -146,9 +146,16 @@ void Bridge::on_source_connection(bool connected) {
 }
 
 void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out) {
-  const bool restarted = last_capture_ && frame.capture_time < *last_capture_;
+  // A step back of more than loss_timeout_ms cannot be a reordered datagram (those are a few
+  // frame periods late): the source's clock started again. Smaller steps are left to the
+  // Trackers, which refuse non-increasing times.
+  const auto max_step_back = std::chrono::duration_cast<Duration>(
+      std::chrono::duration<double, std::milli>(config_.tracking.loss_timeout_ms));
+  const bool restarted = last_capture_ && frame.capture_time + max_step_back < *last_capture_;
   if (restarted) ++source_restarts_;
-  last_capture_ = frame.capture_time;
+  if (!last_capture_ || restarted || frame.capture_time > *last_capture_) {
+    last_capture_ = frame.capture_time;
+  }
   for (Body& body : bodies_) {
     if (restarted) {
       body.reset_base =

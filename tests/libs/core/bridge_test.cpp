@@ -182,6 +182,9 @@ TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAsAReset) {
   Bridge bridge = make_bridge(two_vehicles());
   for (std::uint64_t n = 1; n <= 50; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
   EXPECT_EQ(bridge.snapshot(received_at(50)).bodies[0].estimate.reset_counter, 0);
+  // A reordered datagram (20 ms late) is not a restart: refused by the trackers, nothing sent.
+  EXPECT_TRUE(bridge.on_frame(frame_at(48, true, true), received_at(50)).messages.empty());
+  EXPECT_EQ(bridge.snapshot(received_at(50)).source_restarts, 0U);
   // The mocap server restarts: its clock (and frame numbers) start again from frame 1, 2 s later.
   std::size_t odometry = 0;
   std::uint8_t reset_counter = 0;

@@ -14,9 +14,10 @@
 // times from one steady clock that never goes backwards, and sends what it returns. Call on_tick
 // about every 100 ms (heartbeat and origin cadence is exact to the tick period).
 //
-// A frame whose capture time is earlier than the previous frame's means the source restarted (its
-// clock started again): the Trackers are replaced (their filters hold the old clock's times) and
-// every body's reset_counter advances, so the vehicles treat the next pose as a reset.
+// A frame whose capture time is more than loss_timeout_ms earlier than the latest one means the
+// source restarted (its clock started again; reordered datagrams are only a few frames late, and
+// the Trackers refuse those): the Trackers are replaced (their filters hold the old clock's
+// times) and every body's reset_counter advances, so the vehicles treat the next pose as a reset.
 //
 // Per frame: every tracker gets its body's sample (on_sample), or on_missing when the body is not
 // in the frame; then each enabled vehicle's Sender sees its body's estimate. Vehicles whose body
