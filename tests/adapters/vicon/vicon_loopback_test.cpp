@@ -1,6 +1,7 @@
 // vicon:// client ↔ DataStream emulator over real sockets on 127.0.0.1 (port 0), in all three
 // stream modes; server restart mid-stream. Readiness is awaited on conditions, never by sleeping;
 // nothing asserts on timing.
+#include <asio.hpp>
 #include <memory>
 #include <optional>
 
@@ -8,6 +9,8 @@
 
 #include "mocaplink/sources/vicon_server.hpp"
 #include "mocaplink/sources/vicon_source.hpp"
+#include "mocaplink/wire/vicon_packet.hpp"
+#include "mocaplink/wire/vicon_server_session.hpp"
 #include "vicon_test_support.hpp"
 
 namespace mocaplink::sources {
@@ -158,6 +161,79 @@ TEST(ViconLoopbackRestart, ReconnectsAndNeverDeliversAStalePose) {
   EXPECT_GE(client.counters().reconnects.load(), 1u);
   EXPECT_EQ(client.vicon_counters().connections.load(), 2u);
   EXPECT_EQ(client.counters().malformed.load(), 0u);
+}
+
+TEST(ViconLoopbackSlowClient, DropsWholeFramesForAClientThatDoesNotReadAndServesTheOthers) {
+  ViconServerOptions o;
+  o.listen_host = "127.0.0.1";
+  o.port = 0;
+  auto server = std::make_unique<ViconServer>(o);
+  ASSERT_FALSE(server->start({}).has_value());  // frames only from publish()
+
+  // A raw client that asks for everything in push mode and then never reads.
+  asio::io_context io;
+  asio::ip::tcp::socket stuck(io);
+  stuck.connect({asio::ip::make_address("127.0.0.1"), server->port()});
+  wire::vicon::PacketBuilder b;
+  b.add(wire::vicon::ObjectEnums{wire::vicon::server_offered_types()});
+  b.add(wire::vicon::RequestFrame{true});
+  asio::write(stuck, asio::buffer(b.finish()));
+
+  ViconSource client(client_options(server->port(), StreamMode::server_push), "vicon://test");
+  Collector got;
+  client.start(got.frame_sink(), got.state_sink());
+  ASSERT_TRUE(got.wait([](const std::vector<Event>& events) {
+    return std::any_of(events.begin(), events.end(), [](const Event& e) {
+      return !e.is_frame && e.state == SourceState::connected;
+    });
+  }));
+  // Make sure both push requests reached the server: publish until our client sees a frame
+  // (a frame published before its RequestFrame(1) arrived is legitimately not sent; republish).
+  constexpr auto kRepublish = std::chrono::milliseconds(50);
+  std::uint64_t n = 1;
+  while (Collector::frame_count(got.events()) == 0 && n < 1000) {
+    server->publish(test::test_frame(n++));
+    (void)got.wait([&](const std::vector<Event>& e) { return Collector::frame_count(e) > 0; },
+                   kRepublish);
+  }
+  // A burst of large frames (300 bodies, ~70 kB per packet for the greedy client) fills the stuck
+  // client's socket buffers and its 8-frame queue.
+  for (int i = 0; i < 400; ++i, ++n) {
+    core::MocapFrame f = test::test_frame(n);
+    for (int k = 0; k < 300; ++k) {
+      core::BodySample extra = f.bodies[0];
+      extra.name = "Extra" + std::to_string(k);
+      f.bodies.push_back(extra);
+    }
+    server->publish(f);
+  }
+  // Then frames one at a time until our client has caught up with the last one (a frame that
+  // found its queue still full of the burst is dropped for it too: publish the next one).
+  std::uint64_t last = 0;
+  for (int i = 0; i < 1000; ++i, ++n) {
+    server->publish(test::test_frame(n));
+    const std::uint64_t want = n;
+    const bool caught_up = got.wait(
+        [&](const std::vector<Event>& events) {
+          for (const auto& e : events) {
+            if (e.is_frame) last = std::max(last, e.frame.frame_number);
+          }
+          return last >= want;
+        },
+        kRepublish);
+    if (caught_up) break;
+  }
+  ++n;
+  client.stop();
+  EXPECT_GT(server->counters().frames_dropped.load(), 0u);
+  EXPECT_EQ(server->counters().malformed_requests.load(), 0u);
+  EXPECT_EQ(client.counters().malformed.load(), 0u);
+  EXPECT_EQ(last + 1, n);  // the well-behaved client got the newest frame
+  const auto frames = frames_of(got.events());
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    EXPECT_GT(frames[i].frame_number, frames[i - 1].frame_number);
+  }
+  server->stop();
 }
 
 }  // namespace

@@ -45,9 +45,10 @@ class Collector {
     };
   }
   /// Waits until `done(events)` holds; false if the cap was reached.
-  bool wait(const std::function<bool(const std::vector<Event>&)>& done) {
+  bool wait(const std::function<bool(const std::vector<Event>&)>& done,
+            std::chrono::milliseconds cap = kWaitCap) {
     std::unique_lock lock(mutex_);
-    return cv_.wait_for(lock, kWaitCap, [&] { return done(events_); });
+    return cv_.wait_for(lock, cap, [&] { return done(events_); });
   }
   bool wait_frames(std::size_t n) {
     return wait([n](const std::vector<Event>& e) { return frame_count(e) >= n; });
