@@ -69,6 +69,17 @@ std::string read_all(int fd) {
   return text;
 }
 
+// Kills the child if a failed assertion leaves the test early, so no server outlives its test.
+struct KillOnExit {
+  pid_t& pid;
+  ~KillOnExit() {
+    if (pid > 0) {
+      kill(pid, SIGKILL);
+      waitpid(pid, nullptr, 0);
+    }
+  }
+};
+
 int wait_exit(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
@@ -78,6 +89,7 @@ int wait_exit(pid_t pid) {
 TEST(ViconServeCli, ServesSimBodiesToOurClient) {
   Child c = spawn({MOCAPLINK_BINARY, "serve", "--protocol", "vicon", "--from",
                    "sim://?bodies=2&noise_mm=0", "--listen", "127.0.0.1:0", "--rate", "100"});
+  KillOnExit guard{c.pid};
   const std::string line = read_line(c.out_fd);
   // "serving vicon on HOST:PORT from SOURCE at RATE Hz"
   const auto on = line.find(" on ");
@@ -94,6 +106,7 @@ TEST(ViconServeCli, ServesSimBodiesToOurClient) {
   client.stop();
   kill(c.pid, SIGTERM);
   EXPECT_EQ(wait_exit(c.pid), 0);
+  c.pid = -1;
   const std::string err = read_all(c.err_fd);
   close(c.out_fd);
   close(c.err_fd);
