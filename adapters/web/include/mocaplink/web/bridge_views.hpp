@@ -1,0 +1,54 @@
+// Glue from the core Bridge's snapshot to the dashboard's StatusView, so `mocaplink run` only
+// adds what the core cannot know (the source URL, each vehicle's link URL and whether it is down).
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mocaplink/core/bridge.hpp"
+#include "mocaplink/web/status.hpp"
+
+namespace mocaplink::web {
+
+/// What the daemon knows beyond the core, per snapshot.
+struct BridgeStatusContext {
+  std::string source;              ///< source URL as configured
+  std::string source_error;        ///< last source connection problem, "" if none
+  std::vector<std::string> links;  ///< link URL per vehicle (index as in the Bridge)
+  std::vector<bool> links_down;    ///< per vehicle: the link cannot send (may be shorter)
+};
+
+/// "quadrotor", "ground_rover", ... (MAV_TYPE), or the number when not in our table.
+[[nodiscard]] std::string mav_type_name(std::uint8_t type);
+/// "px4", "ardupilotmega", "generic", ... (MAV_AUTOPILOT), or the number.
+[[nodiscard]] std::string mav_autopilot_name(std::uint8_t autopilot);
+/// Flight mode from a HEARTBEAT: PX4 main/sub modes (custom_mode bytes 2 and 3), ArduPilot
+/// Copter/Plane/Rover mode numbers by vehicle type; otherwise "custom_mode N".
+[[nodiscard]] std::string flight_mode_name(std::uint8_t autopilot, std::uint8_t type,
+                                           std::uint32_t custom_mode);
+
+/// Builds StatusViews from successive Bridge snapshots, measuring each vehicle's actual pose
+/// send rate from its counters (pose frames per second over the last ≥ 1 s). Not thread-safe:
+/// call it from the thread that owns the Bridge (the daemon's event loop).
+class BridgeStatusBuilder {
+ public:
+  /// `started` is the host time the daemon started (uptime_s counts from it).
+  explicit BridgeStatusBuilder(core::HostTime started);
+
+  [[nodiscard]] StatusView build(const core::BridgeSnapshot& snapshot,
+                                 const BridgeStatusContext& context);
+
+ private:
+  struct RateWindow {
+    core::HostTime time{};
+    std::uint64_t poses = 0;
+    double rate_hz = 0.0;
+  };
+  core::HostTime started_;
+  std::map<std::string, RateWindow, std::less<>> rates_;  // by vehicle name
+};
+
+}  // namespace mocaplink::web

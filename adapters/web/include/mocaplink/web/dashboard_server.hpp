@@ -1,0 +1,56 @@
+// The dashboard's HTTP server (docs/api.md): the embedded page at "/", the REST API under /api/
+// and server-sent events at /api/events, over cpp-httplib's own worker threads.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "mocaplink/web/dashboard_backend.hpp"
+#include "mocaplink/web/vehicle_request.hpp"
+
+namespace mocaplink::web {
+
+struct DashboardServerConfig {
+  std::string host = "127.0.0.1";  ///< address to bind: IPv4/IPv6 literal or name; "0.0.0.0" = all
+  std::uint16_t port = 8080;       ///< 0 = any free port (tests; see DashboardServer::port())
+  /// "" = no authentication, allowed only on loopback hosts. Otherwise every /api/ request needs
+  /// "Authorization: Bearer <token>".
+  std::string token{};
+  std::chrono::milliseconds event_period{100};  ///< /api/events period (about 10 updates/s), > 0
+  std::size_t max_event_clients = 8;            ///< concurrent /api/events streams; more get 503
+  std::size_t worker_threads = 16;              ///< httplib workers; > max_event_clients
+};
+
+/// Owns the listening socket and the worker threads. start() once; stop() (or the destructor)
+/// ends every request and stream. Thread-safety: start/stop/port from one owning thread; the
+/// backend is called from worker threads (see DashboardBackend).
+class DashboardServer {
+ public:
+  /// `backend` must outlive the server.
+  DashboardServer(DashboardBackend& backend, DashboardServerConfig config);
+  ~DashboardServer();
+  DashboardServer(const DashboardServer&) = delete;
+  DashboardServer& operator=(const DashboardServer&) = delete;
+
+  /// Checks the configuration, binds and starts serving on a background thread. When it returns
+  /// success, the socket is listening (clients may connect at once). Errors, one sentence each:
+  /// a non-loopback host without a token ("refusing to listen on 0.0.0.0:8080 without [http]
+  /// token ..."), a host that does not resolve or a port in use ("cannot listen on
+  /// 127.0.0.1:8080: Address already in use"). Starting twice is an error.
+  [[nodiscard]] std::optional<std::string> start();
+
+  /// The bound port (the real one when configured with 0); 0 before a successful start().
+  [[nodiscard]] std::uint16_t port() const;
+
+  /// Stops accepting, ends event streams and joins the threads. Idempotent.
+  void stop();
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mocaplink::web

@@ -1,0 +1,154 @@
+// What the dashboard shows: a plain-value snapshot of the Station, its bodies and every vehicle's
+// Sender, as GET /api/status and every /api/events message carry it (docs/api.md documents the
+// JSON; status_json.hpp converts). The daemon fills one from its core snapshots (core_views.hpp
+// helps with the Station part); the server adds the alerts (alerts.hpp).
+//
+// Units and frames are in the names. Optional fields are JSON null when unknown. Plain value types:
+// copy them between threads freely.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mocaplink/core/body_estimate.hpp"
+
+namespace mocaplink::web {
+
+/// One rigid body as the Station and its Tracker see it.
+struct BodyView {
+  std::string name{};
+  /// unseen / tracking / lost (core Tracker; LOST after loss_timeout_ms without a valid sample).
+  core::TrackingState state = core::TrackingState::unseen;
+  bool tracked = false;  ///< tracked in the latest mocap frame
+  /// Last tracked position in the source's world frame (m), as `mocaplink bodies` prints it;
+  /// null until the body was tracked once.
+  std::optional<std::array<double, 3>> p_m{};
+  /// Last tracked attitude (w, x, y, z), source world frame; null until tracked once.
+  std::optional<std::array<double, 4>> q_wxyz{};
+  std::uint64_t frames_tracked = 0;
+  /// Samples the Tracker refused: gated outliers plus invalid input (NaN, non-unit quaternion,
+  /// time going backwards). Cumulative.
+  std::uint64_t rejected = 0;
+  std::uint64_t resets = 0;  ///< filter re-initialisations (ODOMETRY reset_counter increments)
+};
+
+/// The mocap source and its figures (core StationSnapshot).
+struct StationView {
+  std::string source{};        ///< source URL as configured ("sim://", "vicon://192.168.1.3")
+  bool connected = false;      ///< frames are arriving / the connection is up
+  std::string error{};         ///< last connection problem ("" when none), shown while disconnected
+  double frame_rate_hz = 0.0;  ///< measured arrival rate over the last second
+  std::optional<double> nominal_rate_hz{};  ///< the rate the source says it runs at
+  std::optional<double> latency_ms{};       ///< latency reported by the source, when it reports one
+  std::optional<double> jitter_ms{};        ///< std. dev. of receive − capture time
+  std::uint64_t frames = 0;                 ///< frames received, cumulative
+  std::uint64_t dropped = 0;                ///< frames missing from frame-number gaps, cumulative
+  std::vector<BodyView> bodies{};           ///< in order of first appearance
+};
+
+/// How the bridge hears from a vehicle over its link.
+enum class LinkState {
+  up,      ///< a message arrived within the last few seconds (the daemon's silence timeout)
+  silent,  ///< sending, but nothing heard back (yet, or for longer than the timeout)
+  down,    ///< the link cannot send (serial port gone, TCP disconnected, socket error)
+};
+[[nodiscard]] std::string_view to_string(LinkState state);
+
+/// TIMESYNC with the vehicle (the vehicle's boot clock estimate).
+enum class TimesyncState {
+  off,      ///< the profile does not use TIMESYNC
+  waiting,  ///< no exchange completed yet
+  synced,   ///< offset estimated
+};
+[[nodiscard]] std::string_view to_string(TimesyncState state);
+
+/// SET_GPS_GLOBAL_ORIGIN handshake (sent until the vehicle's GPS_GLOBAL_ORIGIN matches).
+enum class OriginState {
+  not_needed,  ///< the profile sends no origin
+  sending,     ///< not confirmed yet: still sending SET_GPS_GLOBAL_ORIGIN
+  confirmed,   ///< the vehicle reported the same origin
+  conflict,    ///< ArduPilot reported another origin; it cannot change until reboot (stopped)
+};
+[[nodiscard]] std::string_view to_string(OriginState state);
+
+/// The agreement check: the vehicle's own ATTITUDE / LOCAL_POSITION_NED against the mocap estimate.
+enum class AgreementVerdict {
+  unknown,   ///< not enough data from the vehicle yet
+  agree,     ///< offsets within the thresholds
+  disagree,  ///< yaw or position offset beyond its threshold (wrong axis mapping, wrong body...)
+};
+[[nodiscard]] std::string_view to_string(AgreementVerdict verdict);
+
+/// The vehicle's HEARTBEAT as last received.
+struct HeartbeatView {
+  std::string type{};       ///< MAV_TYPE, readable ("quadrotor", or the number when unknown)
+  std::string autopilot{};  ///< MAV_AUTOPILOT, readable ("px4", "ardupilotmega")
+  bool armed = false;       ///< base_mode has MAV_MODE_FLAG_SAFETY_ARMED
+  std::string mode{};       ///< flight mode, readable where the daemon can decode it
+  double age_s = 0.0;       ///< seconds since it arrived, ≥ 0
+};
+
+struct TimesyncView {
+  TimesyncState state = TimesyncState::off;
+  std::optional<double> offset_ms{};  ///< vehicle clock − host clock
+  std::optional<double> rtt_ms{};     ///< last round trip
+};
+
+struct AgreementView {
+  AgreementVerdict verdict = AgreementVerdict::unknown;
+  std::optional<double> yaw_offset_deg{};  ///< vehicle yaw − mocap yaw, wrapped to (−180, 180]
+  std::optional<double> position_offset_m{};  ///< |vehicle position − mocap position|, NED
+};
+
+/// One vehicle: its Sender (what we send) and its VehicleState (what it tells us).
+struct VehicleView {
+  std::string name{};
+  std::string body{};          ///< mocap rigid body it follows
+  std::string link{};          ///< link URL, canonical form
+  std::uint8_t system_id = 1;  ///< 1..255
+  std::string profile{};       ///< px4 | ardupilot | px4-gps | ardupilot-gps | classic | custom
+  /// Pose messages being sent now (config spelling: "odometry", "hil_gps", ...).
+  std::vector<std::string> messages{};
+  /// Pose messages the dashboard offers as check boxes for this vehicle (at least `messages`).
+  std::vector<std::string> available_messages{};
+  double rate_hz = 0.0;  ///< configured pose rate, 0 < rate ≤ 500
+  bool paused = false;   ///< true: no pose messages are sent (heartbeat continues)
+  LinkState link_state = LinkState::silent;
+  std::optional<double> last_heard_s{};  ///< seconds since anything arrived from the vehicle
+  std::uint64_t sent_total = 0;          ///< every MAVLink frame sent to it, cumulative
+  /// Frames sent per message name (MAVLink names, "ODOMETRY", "HEARTBEAT", ...), cumulative.
+  std::map<std::string, std::uint64_t> sent{};
+  double send_rate_hz = 0.0;  ///< measured pose messages per second over the last second
+  std::optional<HeartbeatView> heartbeat{};  ///< null until the vehicle's first HEARTBEAT
+  TimesyncView timesync{};
+  OriginState origin = OriginState::not_needed;
+  AgreementView agreement{};
+};
+
+enum class AlertLevel { warning, error };
+[[nodiscard]] std::string_view to_string(AlertLevel level);
+
+/// A condition the operator should look at (see alerts.hpp for the rules).
+struct Alert {
+  AlertLevel level = AlertLevel::warning;
+  std::string kind{};     ///< body_lost | vehicle_silent | link_down | origin_not_confirmed |
+                          ///< origin_conflict | agreement_failing | drops_rising |
+                          ///< source_disconnected | (daemon's own)
+  std::string subject{};  ///< the body or vehicle name, or "station"
+  std::string message{};  ///< one readable sentence
+};
+
+/// Everything GET /api/status returns.
+struct StatusView {
+  double uptime_s = 0.0;  ///< seconds since the daemon started
+  StationView station{};
+  std::vector<VehicleView> vehicles{};
+  std::vector<Alert> alerts{};  ///< the daemon's own; the server appends the derived ones
+};
+
+}  // namespace mocaplink::web

@@ -1,0 +1,384 @@
+#include "mocaplink/web/dashboard_server.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <condition_variable>
+#include <cstring>
+#include <mutex>
+#include <thread>
+#include <utility>
+
+#include <httplib.h>
+#include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
+
+#include "mocaplink/web/alerts.hpp"
+#include "mocaplink/web/assets.hpp"
+#include "mocaplink/web/http_auth.hpp"
+#include "mocaplink/web/status_json.hpp"
+
+namespace mocaplink::web {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+
+constexpr std::size_t kMaxBodyBytes = 64 * 1024;  // a vehicle spec is well under 1 KiB
+constexpr std::string_view kVehiclePath = "/api/vehicles/";
+
+// Browsers get the page and talk only to this origin; nothing is loaded from elsewhere.
+constexpr const char* kContentSecurityPolicy =
+    "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; "
+    "connect-src 'self'; frame-ancestors 'none'; base-uri 'none'; form-action 'none'";
+
+void send_json(httplib::Response& res, int status, const json& body) {
+  res.status = status;
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(body.dump(), "application/json");
+}
+
+void send_error(httplib::Response& res, const ApiError& error) {
+  send_json(res, error.status, json{{"error", error.error}, {"field", error.field}});
+}
+
+void send_method_not_allowed(httplib::Response& res, const char* allow) {
+  res.set_header("Allow", allow);
+  send_error(res, ApiError{405, std::string("method not allowed; allowed: ") + allow, ""});
+}
+
+bool is_json_content_type(const std::string& content_type) {
+  const std::string_view type = std::string_view(content_type).substr(0, content_type.find(';'));
+  return type == "application/json";
+}
+
+std::string host_for_url(const std::string& host) {
+  return host.find(':') != std::string::npos ? "[" + host + "]" : host;
+}
+
+}  // namespace
+
+class DashboardServer::Impl {
+ public:
+  Impl(DashboardBackend& backend, DashboardServerConfig config)
+      : backend_(backend), config_(std::move(config)) {}
+
+  ~Impl() { stop(); }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
+  std::optional<std::string> start();
+  void stop();
+  [[nodiscard]] std::uint16_t port() const { return port_; }
+
+ private:
+  struct Snapshot {
+    json status;
+    std::string text;
+  };
+
+  void install_routes();
+  httplib::Server::HandlerResponse check_access(const httplib::Request& req,
+                                                httplib::Response& res) const;
+  std::shared_ptr<const Snapshot> snapshot();
+  void invalidate_snapshot();
+  void respond_vehicle(httplib::Response& res, int status, const std::string& name);
+  void apply_and_respond(httplib::Response& res, const VehicleChange& change,
+                         const std::string& name, int success_status);
+  void serve_events(httplib::Response& res);
+
+  DashboardBackend& backend_;
+  DashboardServerConfig config_;
+  httplib::Server server_;
+  std::thread thread_;
+  std::uint16_t port_ = 0;
+  bool started_ = false;
+
+  std::mutex snapshot_mutex_;  // guards the three below; serialises backend_.status()
+  std::shared_ptr<const Snapshot> snapshot_;
+  Clock::time_point snapshot_time_{};
+  AlertMonitor alerts_;
+  const Clock::time_point created_ = Clock::now();
+
+  std::atomic<bool> stopping_{false};
+  std::mutex stop_mutex_;
+  std::condition_variable stop_cv_;
+  std::atomic<std::size_t> event_clients_{0};
+};
+
+std::optional<std::string> DashboardServer::Impl::start() {
+  const std::string address = host_for_url(config_.host) + ":" + std::to_string(config_.port);
+  if (started_) return "the dashboard server is already started";
+  if (config_.event_period <= std::chrono::milliseconds::zero()) {
+    return "the dashboard event period must be positive";
+  }
+  if (config_.token.empty() && !is_loopback_host(config_.host)) {
+    return "refusing to listen on " + address +
+           " without a token: set [http] token (anyone on the network could change what the "
+           "vehicles receive), or listen on 127.0.0.1";
+  }
+  install_routes();
+  const std::size_t workers = std::max(config_.worker_threads, config_.max_event_clients + 2);
+  server_.new_task_queue = [workers] { return new httplib::ThreadPool(workers); };
+  server_.set_payload_max_length(kMaxBodyBytes);
+  server_.set_keep_alive_timeout(2);
+  // httplib's default sets SO_REUSEPORT, which lets a second daemon bind the same port and
+  // silently take half the requests. SO_REUSEADDR alone still allows a quick restart (TIME_WAIT)
+  // but makes "port in use" an error.
+  server_.set_socket_options([](auto sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
+
+  errno = 0;
+  int bound = -1;
+  if (config_.port == 0) {
+    bound = server_.bind_to_any_port(config_.host);
+  } else if (server_.bind_to_port(config_.host, config_.port)) {
+    bound = config_.port;
+  }
+  if (bound <= 0) {
+    // httplib reports only failure; errno still holds the reason from getaddrinfo/bind.
+    const int error = errno;
+    return "cannot listen on " + address + ": " +
+           (error != 0 ? std::string(std::strerror(error))
+                       : std::string("address not available or host name does not resolve"));
+  }
+  port_ = static_cast<std::uint16_t>(bound);
+  started_ = true;
+  thread_ = std::thread([this] { server_.listen_after_bind(); });
+  // stop() only takes effect once the accept loop runs; wait for it so a quick stop() after
+  // start() cannot be lost. The socket already accepts connections (bound and listening).
+  while (!server_.is_running() && thread_.joinable()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  spdlog::info("dashboard: http://{}:{}/", host_for_url(config_.host), port_);
+  return std::nullopt;
+}
+
+void DashboardServer::Impl::stop() {
+  {
+    std::lock_guard lock(stop_mutex_);
+    stopping_ = true;
+  }
+  stop_cv_.notify_all();
+  if (thread_.joinable()) {
+    server_.stop();
+    thread_.join();
+  }
+}
+
+httplib::Server::HandlerResponse DashboardServer::Impl::check_access(const httplib::Request& req,
+                                                                     httplib::Response& res) const {
+  using httplib::Server;
+  // The page itself is public: it holds no data, and a browser cannot attach a header to a page
+  // load. Everything under /api/ is guarded.
+  if (req.path.rfind("/api/", 0) != 0 && req.path != "/api")
+    return Server::HandlerResponse::Unhandled;
+  const bool mutating = req.method == "POST" || req.method == "PATCH" || req.method == "DELETE" ||
+                        req.method == "PUT";
+  if (!config_.token.empty() &&
+      !bearer_token_matches(req.get_header_value("Authorization"), config_.token)) {
+    res.set_header("WWW-Authenticate", "Bearer realm=\"mocaplink\"");
+    res.set_header("Connection", "close");  // any request body is left unread
+    send_error(res,
+               ApiError{401, "missing or wrong token: send Authorization: Bearer <token>", ""});
+    return Server::HandlerResponse::Handled;
+  }
+  if (mutating && !origin_allowed(req.get_header_value("Origin"), req.get_header_value("Host"))) {
+    res.set_header("Connection", "close");
+    send_error(res, ApiError{403, "cross-origin request refused", ""});
+    return Server::HandlerResponse::Handled;
+  }
+  // A JSON content type forces a CORS preflight on cross-site requests (which we never approve),
+  // so a web page elsewhere cannot post a "simple" form request to a loopback dashboard.
+  if ((req.method == "POST" || req.method == "PATCH") &&
+      !is_json_content_type(req.get_header_value("Content-Type"))) {
+    res.set_header("Connection", "close");
+    send_error(res, ApiError{415, "Content-Type must be application/json", ""});
+    return Server::HandlerResponse::Handled;
+  }
+  return Server::HandlerResponse::Unhandled;
+}
+
+std::shared_ptr<const DashboardServer::Impl::Snapshot> DashboardServer::Impl::snapshot() {
+  std::lock_guard lock(snapshot_mutex_);
+  const auto now = Clock::now();
+  // Many clients share one backend call per half period.
+  if (snapshot_ && now - snapshot_time_ < config_.event_period / 2) return snapshot_;
+  StatusView status = backend_.status();
+  alerts_.annotate(status, std::chrono::duration<double>(now - created_).count());
+  auto fresh = std::make_shared<Snapshot>();
+  fresh->status = status;
+  fresh->text = fresh->status.dump();
+  snapshot_ = fresh;
+  snapshot_time_ = now;
+  return snapshot_;
+}
+
+void DashboardServer::Impl::invalidate_snapshot() {
+  std::lock_guard lock(snapshot_mutex_);
+  snapshot_.reset();
+}
+
+void DashboardServer::Impl::respond_vehicle(httplib::Response& res, int status,
+                                            const std::string& name) {
+  const auto snap = snapshot();
+  for (const json& vehicle : snap->status.at("vehicles")) {
+    if (vehicle.at("name") == name) {
+      send_json(res, status, vehicle);
+      return;
+    }
+  }
+  send_error(res, ApiError{404, "no vehicle named \"" + name + "\"", ""});
+}
+
+void DashboardServer::Impl::apply_and_respond(httplib::Response& res, const VehicleChange& change,
+                                              const std::string& name, int success_status) {
+  if (auto error = backend_.apply(change)) {
+    spdlog::debug("dashboard: change to {} refused: {}", name, error->error);
+    send_error(res, *error);
+    return;
+  }
+  invalidate_snapshot();
+  if (success_status == 204) {
+    res.status = 204;
+    return;
+  }
+  respond_vehicle(res, success_status, name);
+}
+
+void DashboardServer::Impl::serve_events(httplib::Response& res) {
+  if (event_clients_.fetch_add(1) >= config_.max_event_clients) {
+    --event_clients_;
+    send_error(res, ApiError{503, "too many event streams open", ""});
+    return;
+  }
+  res.set_header("Cache-Control", "no-store");
+  res.set_header("X-Accel-Buffering", "no");  // proxies: do not buffer the stream
+  res.set_chunked_content_provider(
+      "text/event-stream",
+      [this, sequence = std::uint64_t{0}](std::size_t, httplib::DataSink& sink) mutable {
+        if (stopping_) {
+          sink.done();
+          return true;
+        }
+        std::string event = sequence == 0 ? "retry: 1000\n" : "";
+        event += "id: " + std::to_string(++sequence) + "\nevent: status\ndata: ";
+        event += snapshot()->text;
+        event += "\n\n";
+        if (!sink.is_writable() || !sink.write(event.data(), event.size())) return false;
+        std::unique_lock lock(stop_mutex_);
+        stop_cv_.wait_for(lock, config_.event_period, [this] { return stopping_.load(); });
+        return true;
+      },
+      [this](bool) { --event_clients_; });
+}
+
+void DashboardServer::Impl::install_routes() {
+  using httplib::Request;
+  using httplib::Response;
+  server_.set_pre_routing_handler(
+      [this](const Request& req, Response& res) { return check_access(req, res); });
+
+  server_.Get("/api/status", [this](const Request&, Response& res) {
+    const auto snap = snapshot();
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(snap->text, "application/json");
+  });
+  server_.Get("/api/events", [this](const Request&, Response& res) { serve_events(res); });
+  server_.Get("/api/vehicles", [this](const Request&, Response& res) {
+    send_json(res, 200, snapshot()->status.at("vehicles"));
+  });
+  server_.Post("/api/vehicles", [this](const Request& req, Response& res) {
+    auto spec = parse_vehicle_spec(req.body);
+    if (!spec.ok()) return send_error(res, spec.error());
+    res.set_header("Location", std::string(kVehiclePath) + spec.value().name);
+    apply_and_respond(res, AddVehicle{spec.value()}, spec.value().name, 201);
+  });
+
+  const std::string vehicle_pattern = std::string(kVehiclePath) + "([^/]+)";
+  auto vehicle_name = [](const Request& req, Response& res) -> std::optional<std::string> {
+    std::string name = req.matches[1];
+    if (!is_valid_vehicle_name(name)) {
+      send_error(res, ApiError{404, "no vehicle named \"" + name + "\"", ""});
+      return std::nullopt;
+    }
+    return name;
+  };
+  server_.Get(vehicle_pattern, [this, vehicle_name](const Request& req, Response& res) {
+    if (auto name = vehicle_name(req, res)) respond_vehicle(res, 200, *name);
+  });
+  server_.Patch(vehicle_pattern, [this, vehicle_name](const Request& req, Response& res) {
+    auto name = vehicle_name(req, res);
+    if (!name) return;
+    auto patch = parse_vehicle_patch(req.body, *name);
+    if (!patch.ok()) return send_error(res, patch.error());
+    apply_and_respond(res, UpdateVehicle{patch.value()}, *name, 200);
+  });
+  server_.Delete(vehicle_pattern, [this, vehicle_name](const Request& req, Response& res) {
+    if (auto name = vehicle_name(req, res))
+      apply_and_respond(res, RemoveVehicle{*name}, *name, 204);
+  });
+
+  // Known paths with the wrong method: 405 with Allow.
+  auto not_allowed = [](const char* allow) {
+    return [allow](const Request&, Response& res) { send_method_not_allowed(res, allow); };
+  };
+  for (const char* path : {"/api/status", "/api/events"}) {
+    server_.Post(path, not_allowed("GET"));
+    server_.Put(path, not_allowed("GET"));
+    server_.Patch(path, not_allowed("GET"));
+    server_.Delete(path, not_allowed("GET"));
+  }
+  server_.Put("/api/vehicles", not_allowed("GET, POST"));
+  server_.Patch("/api/vehicles", not_allowed("GET, POST"));
+  server_.Delete("/api/vehicles", not_allowed("GET, POST"));
+  server_.Post(vehicle_pattern, not_allowed("GET, PATCH, DELETE"));
+  server_.Put(vehicle_pattern, not_allowed("GET, PATCH, DELETE"));
+
+  server_.Get("/.*", [](const Request& req, Response& res) {
+    const auto asset = find_asset(req.path);
+    if (!asset) {
+      res.status = 404;  // the error handler writes the body
+      return;
+    }
+    res.set_header("Cache-Control", "no-cache");
+    res.set_header("X-Content-Type-Options", "nosniff");
+    res.set_header("Content-Security-Policy", kContentSecurityPolicy);
+    res.set_content(reinterpret_cast<const char*>(asset->data.data()), asset->data.size(),
+                    std::string(asset->content_type).c_str());
+  });
+
+  // Anything unmatched (and every error without a body) gets a JSON body under /api/.
+  server_.set_error_handler([](const Request& req, Response& res) {
+    if (!res.body.empty()) return;
+    const std::string message = res.status == 404   ? "not found"
+                                : res.status == 413 ? "request body too large"
+                                : res.status == 400 ? "bad request"
+                                                    : "request refused";
+    if (req.path.rfind("/api", 0) == 0) {
+      send_json(res, res.status, json{{"error", message}, {"field", ""}});
+    } else {
+      res.set_content(message + "\n", "text/plain");
+    }
+  });
+}
+
+DashboardServer::DashboardServer(DashboardBackend& backend, DashboardServerConfig config)
+    : impl_(std::make_unique<Impl>(backend, std::move(config))) {}
+
+DashboardServer::~DashboardServer() = default;
+
+std::optional<std::string> DashboardServer::start() {
+  return impl_->start();
+}
+
+std::uint16_t DashboardServer::port() const {
+  return impl_->port();
+}
+
+void DashboardServer::stop() {
+  impl_->stop();
+}
+
+}  // namespace mocaplink::web

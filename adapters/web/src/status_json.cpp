@@ -1,0 +1,146 @@
+#include "mocaplink/web/status_json.hpp"
+
+#include <string_view>
+
+namespace mocaplink::web {
+namespace {
+
+template <typename T>
+nlohmann::json optional_json(const std::optional<T>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+std::string text(std::string_view s) {
+  return std::string(s);
+}
+
+}  // namespace
+
+std::string_view to_string(LinkState state) {
+  switch (state) {
+    case LinkState::up:
+      return "up";
+    case LinkState::silent:
+      return "silent";
+    case LinkState::down:
+      return "down";
+  }
+  return "silent";
+}
+
+std::string_view to_string(TimesyncState state) {
+  switch (state) {
+    case TimesyncState::off:
+      return "off";
+    case TimesyncState::waiting:
+      return "waiting";
+    case TimesyncState::synced:
+      return "synced";
+  }
+  return "off";
+}
+
+std::string_view to_string(OriginState state) {
+  switch (state) {
+    case OriginState::not_needed:
+      return "not_needed";
+    case OriginState::sending:
+      return "sending";
+    case OriginState::confirmed:
+      return "confirmed";
+    case OriginState::conflict:
+      return "conflict";
+  }
+  return "not_needed";
+}
+
+std::string_view to_string(AgreementVerdict verdict) {
+  switch (verdict) {
+    case AgreementVerdict::unknown:
+      return "unknown";
+    case AgreementVerdict::agree:
+      return "agree";
+    case AgreementVerdict::disagree:
+      return "disagree";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(AlertLevel level) {
+  return level == AlertLevel::error ? "error" : "warning";
+}
+
+void to_json(nlohmann::json& j, const BodyView& body) {
+  j = nlohmann::json{{"name", body.name},
+                     {"state", text(core::to_string(body.state))},
+                     {"tracked", body.tracked},
+                     {"p_m", optional_json(body.p_m)},
+                     {"q_wxyz", optional_json(body.q_wxyz)},
+                     {"frames_tracked", body.frames_tracked},
+                     {"rejected", body.rejected},
+                     {"resets", body.resets}};
+}
+
+void to_json(nlohmann::json& j, const StationView& station) {
+  j = nlohmann::json{{"source", station.source},
+                     {"connected", station.connected},
+                     {"error", station.error},
+                     {"frame_rate_hz", station.frame_rate_hz},
+                     {"nominal_rate_hz", optional_json(station.nominal_rate_hz)},
+                     {"latency_ms", optional_json(station.latency_ms)},
+                     {"jitter_ms", optional_json(station.jitter_ms)},
+                     {"frames", station.frames},
+                     {"dropped", station.dropped},
+                     {"bodies", station.bodies}};
+}
+
+void to_json(nlohmann::json& j, const HeartbeatView& heartbeat) {
+  j = nlohmann::json{{"type", heartbeat.type},
+                     {"autopilot", heartbeat.autopilot},
+                     {"armed", heartbeat.armed},
+                     {"mode", heartbeat.mode},
+                     {"age_s", heartbeat.age_s}};
+}
+
+void to_json(nlohmann::json& j, const VehicleView& vehicle) {
+  j = nlohmann::json{{"name", vehicle.name},
+                     {"body", vehicle.body},
+                     {"link", vehicle.link},
+                     {"system_id", vehicle.system_id},
+                     {"profile", vehicle.profile},
+                     {"messages", vehicle.messages},
+                     {"available_messages", vehicle.available_messages},
+                     {"rate_hz", vehicle.rate_hz},
+                     {"paused", vehicle.paused},
+                     {"link_state", text(to_string(vehicle.link_state))},
+                     {"last_heard_s", optional_json(vehicle.last_heard_s)},
+                     {"sent_total", vehicle.sent_total},
+                     {"sent", vehicle.sent},
+                     {"send_rate_hz", vehicle.send_rate_hz},
+                     {"heartbeat", optional_json(vehicle.heartbeat)},
+                     {"timesync",
+                      {{"state", text(to_string(vehicle.timesync.state))},
+                       {"offset_ms", optional_json(vehicle.timesync.offset_ms)},
+                       {"rtt_ms", optional_json(vehicle.timesync.rtt_ms)}}},
+                     {"origin", {{"state", text(to_string(vehicle.origin))}}},
+                     {"agreement",
+                      {{"verdict", text(to_string(vehicle.agreement.verdict))},
+                       {"yaw_offset_deg", optional_json(vehicle.agreement.yaw_offset_deg)},
+                       {"position_offset_m", optional_json(vehicle.agreement.position_offset_m)}}}};
+}
+
+void to_json(nlohmann::json& j, const Alert& alert) {
+  j = nlohmann::json{{"level", text(to_string(alert.level))},
+                     {"kind", alert.kind},
+                     {"subject", alert.subject},
+                     {"message", alert.message}};
+}
+
+void to_json(nlohmann::json& j, const StatusView& status) {
+  j = nlohmann::json{{"uptime_s", status.uptime_s},
+                     {"station", status.station},
+                     {"vehicles", status.vehicles},
+                     {"alerts", status.alerts}};
+}
+
+}  // namespace mocaplink::web

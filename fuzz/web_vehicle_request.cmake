@@ -1,0 +1,5 @@
+# Dashboard request bodies (POST/PATCH /api/vehicles): adapters/web vehicle_request.
+if(TARGET mocaplink_web)
+  mocaplink_fuzz(web_vehicle_request ${CMAKE_CURRENT_SOURCE_DIR}/web_vehicle_request.cpp
+                 mocaplink::web)
+endif()

@@ -1,0 +1,229 @@
+// POST / PATCH / DELETE /api/vehicles over real HTTP: every mutation, every validation error, and
+// that a refused request changes nothing.
+#include <variant>
+
+#include "api_fixture.hpp"
+
+namespace mocaplink::web::testing {
+namespace {
+
+using nlohmann::json;
+
+const json kNewVehicle = {{"name", "hexa"},
+                          {"body", "Body2"},
+                          {"link", "udp://10.0.0.7:14540"},
+                          {"system_id", 7},
+                          {"profile", "custom"},
+                          {"messages", {"vision_position_estimate", "vision_speed_estimate"}},
+                          {"rate_hz", 30},
+                          {"paused", true}};
+
+TEST_F(ApiTest, PostAddsAVehicleAndReturnsIt) {
+  auto res = post("/api/vehicles", kNewVehicle.dump());
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 201) << res->body;
+  EXPECT_EQ(res->get_header_value("Location"), "/api/vehicles/hexa");
+  const json created = body_json(res);
+  EXPECT_EQ(created["name"], "hexa");
+  EXPECT_EQ(created["messages"], kNewVehicle["messages"]);
+  EXPECT_EQ(created["paused"], true);
+
+  const auto applied = backend_.applied();
+  ASSERT_EQ(applied.size(), 1U);
+  const auto* add = std::get_if<AddVehicle>(&applied[0]);
+  ASSERT_NE(add, nullptr);
+  EXPECT_EQ(add->spec.name, "hexa");
+  EXPECT_EQ(add->spec.body, "Body2");
+  EXPECT_EQ(add->spec.link, "udp://10.0.0.7:14540");
+  EXPECT_EQ(add->spec.system_id, 7);
+  EXPECT_EQ(add->spec.profile, "custom");
+  EXPECT_DOUBLE_EQ(add->spec.rate_hz, 30.0);
+  EXPECT_TRUE(add->spec.paused);
+  EXPECT_EQ(add->spec.signing_key, "");
+
+  const json vehicles = body_json(get("/api/vehicles"));
+  ASSERT_EQ(vehicles.size(), 3U);  // the change shows at once (no stale cached status)
+  EXPECT_EQ(vehicles[2]["name"], "hexa");
+}
+
+TEST_F(ApiTest, PostDefaultsFollowTheConfigFile) {
+  auto res = post("/api/vehicles", R"({"name":"q2","body":"Body3","link":"udp://h:1"})");
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 201) << res->body;
+  const auto applied = backend_.applied();
+  ASSERT_EQ(applied.size(), 1U);
+  const auto& spec = std::get<AddVehicle>(applied[0]).spec;
+  EXPECT_EQ(spec.system_id, 1);
+  EXPECT_EQ(spec.profile, "px4");
+  EXPECT_TRUE(spec.messages.empty());
+  EXPECT_DOUBLE_EQ(spec.rate_hz, 50.0);
+  EXPECT_FALSE(spec.paused);
+}
+
+struct BadPost {
+  std::string body;
+  int status;
+  std::string field;
+  std::string error_part;  // a substring of the error sentence
+};
+
+TEST_F(ApiTest, EveryInvalidPostIsRefusedNamingTheFieldAndChangesNothing) {
+  auto with = [](const char* key, json value) {
+    json v = {{"name", "n1"}, {"body", "Body1"}, {"link", "udp://10.0.0.2:14540"}};
+    v[key] = std::move(value);
+    return v.dump();
+  };
+  auto without = [](const char* key) {
+    json v = {{"name", "n1"}, {"body", "Body1"}, {"link", "udp://10.0.0.2:14540"}};
+    v.erase(key);
+    return v.dump();
+  };
+  const std::vector<BadPost> cases = {
+      {"{", 400, "", "not valid JSON"},
+      {"[1,2]", 400, "", "JSON object"},
+      {without("name"), 422, "name", "required"},
+      {without("body"), 422, "body", "required"},
+      {without("link"), 422, "link", "required"},
+      {with("name", "quad 1"), 422, "name", "A-Z"},
+      {with("name", std::string(65, 'a')), 422, "name", "at most 64"},
+      {with("name", 5), 422, "name", "string"},
+      {with("body", ""), 422, "body", "empty"},
+      {with("body", "a\nb"), 422, "body", "control"},
+      {with("link", "http://10.0.0.2"), 422, "link", "udp://"},
+      {with("system_id", 0), 422, "system_id", "1..255"},
+      {with("system_id", 256), 422, "system_id", "1..255"},
+      {with("system_id", 1.5), 422, "system_id", "integer"},
+      {with("profile", "px5"), 422, "profile", "px4"},
+      {with("rate_hz", 0), 422, "rate_hz", "> 0"},
+      {with("rate_hz", 500.5), 422, "rate_hz", "<= 500"},
+      {with("rate_hz", "50"), 422, "rate_hz", "number"},
+      {with("messages", json::array({"odometry"})), 422, "messages", "only profile \"custom\""},
+      {with("messages", "odometry"), 422, "messages", "array"},
+      {with("signing_key", "abc"), 422, "signing_key", "64 hex"},
+      {with("signing_key", std::string(64, 'g')), 422, "signing_key", "64 hex"},
+      {with("paused", "yes"), 422, "paused", "true or false"},
+      {with("rate", 50), 422, "rate", "did you mean \"rate_hz\""},
+      {with("colour", "red"), 422, "colour", "expected one of"},
+      // The backend's own refusals pass through unchanged.
+      {with("name", "quad1"), 409, "name", "exists"},
+      {with("link", "udp://10.0.0.2"), 422, "link", "missing port"},
+  };
+  auto custom = [](json messages) {
+    json v = {{"name", "n1"}, {"body", "B"}, {"link", "udp://h:1"}, {"profile", "custom"}};
+    if (!messages.is_null()) v["messages"] = std::move(messages);
+    return v.dump();
+  };
+  std::vector<BadPost> custom_cases = {
+      {custom(nullptr), 422, "messages", "at least one"},
+      {custom(json::array()), 422, "messages", "at least one"},
+      {custom({"odometry", "teleport"}), 422, "messages", "unknown message \"teleport\""},
+      {custom({"odometry", "odometry"}), 422, "messages", "duplicate"},
+  };
+  std::vector<BadPost> all = cases;
+  all.insert(all.end(), custom_cases.begin(), custom_cases.end());
+  for (const BadPost& c : all) {
+    SCOPED_TRACE(c.body);
+    auto res = post("/api/vehicles", c.body);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, c.status);
+    const json error = body_json(res);
+    EXPECT_EQ(error["field"], c.field);
+    EXPECT_NE(error["error"].get<std::string>().find(c.error_part), std::string::npos)
+        << error["error"];
+  }
+  EXPECT_TRUE(backend_.applied().empty());
+  EXPECT_EQ(body_json(get("/api/vehicles")).size(), 2U);
+}
+
+TEST_F(ApiTest, PatchChangesRateMessagesAndPauseAtOnce) {
+  auto rate = patch("/api/vehicles/quad1", R"({"rate_hz": 12.5})");
+  ASSERT_TRUE(rate);
+  ASSERT_EQ(rate->status, 200) << rate->body;
+  EXPECT_DOUBLE_EQ(body_json(rate)["rate_hz"].get<double>(), 12.5);
+
+  auto messages = patch("/api/vehicles/quad1", R"({"messages": []})");
+  ASSERT_TRUE(messages);
+  ASSERT_EQ(messages->status, 200);
+  EXPECT_EQ(body_json(messages)["messages"], json::array());
+
+  auto both = patch("/api/vehicles/rover", R"({"paused": true, "messages": ["hil_gps"]})");
+  ASSERT_TRUE(both);
+  ASSERT_EQ(both->status, 200);
+  EXPECT_EQ(body_json(both)["paused"], true);
+  EXPECT_EQ(body_json(both)["messages"], json::array({"hil_gps"}));
+
+  const auto applied = backend_.applied();
+  ASSERT_EQ(applied.size(), 3U);
+  const auto& first = std::get<UpdateVehicle>(applied[0]).patch;
+  EXPECT_EQ(first.name, "quad1");
+  EXPECT_EQ(first.rate_hz, 12.5);
+  EXPECT_FALSE(first.messages.has_value());
+  EXPECT_FALSE(first.paused.has_value());
+  const auto& third = std::get<UpdateVehicle>(applied[2]).patch;
+  EXPECT_EQ(third.paused, true);
+  EXPECT_FALSE(third.rate_hz.has_value());
+}
+
+TEST_F(ApiTest, EveryInvalidPatchIsRefusedAndNothingIsHalfApplied) {
+  const std::vector<BadPost> cases = {
+      {R"({"paused": true, "rate_hz": -1})", 422, "rate_hz", "> 0"},
+      {R"({"paused": true, "messages": ["odometry", "nope"]})", 422, "messages", "unknown"},
+      {R"({"rate_hz": 20, "paused": 1})", 422, "paused", "true or false"},
+      {R"({"rate_hz": 20, "profile": "ardupilot"})", 422, "profile", "unknown key"},
+      {R"({})", 422, "", "nothing to change"},
+      {R"(nonsense)", 400, "", "not valid JSON"},
+  };
+  for (const BadPost& c : cases) {
+    SCOPED_TRACE(c.body);
+    auto res = patch("/api/vehicles/quad1", c.body);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, c.status);
+    EXPECT_EQ(body_json(res)["field"], c.field);
+    EXPECT_NE(body_json(res)["error"].get<std::string>().find(c.error_part), std::string::npos);
+  }
+  EXPECT_TRUE(backend_.applied().empty());
+  const json quad = body_json(get("/api/vehicles/quad1"));
+  EXPECT_EQ(quad["paused"], false);
+  EXPECT_DOUBLE_EQ(quad["rate_hz"].get<double>(), 50.0);
+}
+
+TEST_F(ApiTest, PatchOfAnUnknownVehicleIs404) {
+  auto res = patch("/api/vehicles/ghost", R"({"rate_hz": 10})");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  auto bad_name = patch("/api/vehicles/bad%20name", R"({"rate_hz": 10})");
+  ASSERT_TRUE(bad_name);
+  EXPECT_EQ(bad_name->status, 404);
+}
+
+TEST_F(ApiTest, PatchNeedsAJsonContentType) {
+  auto res = client_->Patch("/api/vehicles/quad1", R"({"rate_hz": 10})", "text/plain");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 415);
+  EXPECT_TRUE(backend_.applied().empty());
+}
+
+TEST_F(ApiTest, DeleteRemovesTheVehicle) {
+  auto res = del("/api/vehicles/rover");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 204);
+  EXPECT_TRUE(res->body.empty());
+  ASSERT_EQ(backend_.applied().size(), 1U);
+  EXPECT_EQ(std::get<RemoveVehicle>(backend_.applied()[0]).name, "rover");
+  EXPECT_EQ(get("/api/vehicles/rover")->status, 404);
+  EXPECT_EQ(body_json(get("/api/vehicles")).size(), 1U);
+  auto again = del("/api/vehicles/rover");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 404);
+}
+
+TEST_F(ApiTest, OversizedBodiesAreRefused) {
+  const std::string huge = R"({"name":"x","body":")" + std::string(70 * 1024, 'a') + R"("})";
+  auto res = post("/api/vehicles", huge);
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 413);
+  EXPECT_TRUE(backend_.applied().empty());
+}
+
+}  // namespace
+}  // namespace mocaplink::web::testing

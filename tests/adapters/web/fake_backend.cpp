@@ -1,0 +1,182 @@
+#include "fake_backend.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mocaplink::web::testing {
+namespace {
+
+VehicleView make_vehicle(const VehicleSpec& spec) {
+  VehicleView v;
+  v.name = spec.name;
+  v.body = spec.body;
+  v.link = spec.link;
+  v.system_id = spec.system_id;
+  v.profile = spec.profile;
+  v.rate_hz = spec.rate_hz;
+  v.paused = spec.paused;
+  if (spec.profile == "custom")
+    v.messages = spec.messages;
+  else if (spec.profile == "classic")
+    v.messages = {"hil_gps", "local_position_ned", "att_pos_mocap"};
+  else if (spec.profile == "px4-gps")
+    v.messages = {"hil_gps"};
+  else if (spec.profile == "ardupilot-gps")
+    v.messages = {"gps_input"};
+  else
+    v.messages = {"odometry"};
+  v.available_messages = message_names();
+  v.origin = spec.profile == "custom" ? OriginState::not_needed : OriginState::sending;
+  v.timesync.state = spec.profile == "px4" ? TimesyncState::waiting : TimesyncState::off;
+  return v;
+}
+
+}  // namespace
+
+std::array<double, 3> fake_body_position(std::size_t index, double t_s) {
+  const double w = 2.0 * std::numbers::pi / 12.0;  // one lap in 12 s
+  switch (index) {
+    case 0:
+      return {1.5 * std::cos(w * t_s), 1.5 * std::sin(w * t_s), 1.0};
+    case 1:
+      return {2.0 * std::sin(w * t_s), 1.0 * std::sin(2.0 * w * t_s), 0.5};
+    default:
+      return {-1.0, 2.0, 0.0};
+  }
+}
+
+FakeBackend::FakeBackend() {
+  VehicleSpec quad{"quad1", "Body1", "udp://127.0.0.1:14540", 1, "px4", {}, 50.0, "", false};
+  VehicleSpec rover{"rover", "Body2", "udp://127.0.0.1:14541", 2, "classic", {}, 20.0, "", false};
+  vehicles_.push_back(Vehicle{make_vehicle(quad), 0.0, 0.0});
+  vehicles_.push_back(Vehicle{make_vehicle(rover), 0.0, 0.0});
+  // quad1 talks back: heartbeat, timesync, origin confirmed, agreeing estimate.
+  VehicleView& q = vehicles_[0].view;
+  q.link_state = LinkState::up;
+  q.last_heard_s = 0.2;
+  q.heartbeat = HeartbeatView{"quadrotor", "px4", false, "POSCTL", 0.2};
+  q.timesync = TimesyncView{TimesyncState::synced, 1234.5, 0.8};
+  q.origin = OriginState::confirmed;
+  q.agreement = AgreementView{AgreementVerdict::agree, 0.4, 0.012};
+  // rover's own estimate disagrees (a wrong north axis, say).
+  VehicleView& r = vehicles_[1].view;
+  r.link_state = LinkState::up;
+  r.last_heard_s = 0.5;
+  r.heartbeat = HeartbeatView{"ground_rover", "ardupilotmega", true, "GUIDED", 0.5};
+  r.agreement = AgreementView{AgreementVerdict::disagree, 89.7, 0.35};
+}
+
+void FakeBackend::accrue(Vehicle& vehicle) const {
+  VehicleView& v = vehicle.view;
+  const double pose_count =
+      vehicle.sent_before +
+      (v.paused || v.messages.empty() ? 0.0 : (t_s_ - vehicle.sent_at_s) * v.rate_hz);
+  vehicle.sent_before = pose_count;
+  vehicle.sent_at_s = t_s_;
+  v.sent.clear();
+  v.sent_total = 0;
+  for (const std::string& message : v.messages) {
+    std::string upper = message;
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](char c) { return static_cast<char>(std::toupper(c)); });
+    v.sent[upper] = static_cast<std::uint64_t>(pose_count);
+    v.sent_total += static_cast<std::uint64_t>(pose_count);
+  }
+  v.sent["HEARTBEAT"] = static_cast<std::uint64_t>(t_s_);
+  v.sent_total += static_cast<std::uint64_t>(t_s_);
+  v.send_rate_hz = v.paused || v.messages.empty() ? 0.0 : v.rate_hz * 0.998;
+}
+
+StatusView FakeBackend::status() {
+  std::lock_guard lock(mutex_);
+  ++status_calls_;
+  StatusView s;
+  s.uptime_s = t_s_;
+  s.station.source = "sim://?bodies=3";
+  s.station.connected = true;
+  s.station.frame_rate_hz = 199.7;
+  s.station.nominal_rate_hz = 200.0;
+  s.station.latency_ms = 2.4;
+  s.station.jitter_ms = 0.3;
+  s.station.frames = static_cast<std::uint64_t>(t_s_ * 200.0);
+  s.station.dropped = 3;
+  const char* names[] = {"Body1", "Body2", "Body3"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    BodyView b;
+    b.name = names[i];
+    b.p_m = fake_body_position(i, t_s_);
+    b.q_wxyz = std::array<double, 4>{1.0, 0.0, 0.0, 0.0};
+    const bool lost = i == 2;  // Body3 lies on the floor, occluded
+    b.state = lost ? core::TrackingState::lost : core::TrackingState::tracking;
+    b.tracked = !lost;
+    b.frames_tracked = lost ? 120 : s.station.frames;
+    b.rejected = i == 1 ? 2 : 0;
+    s.station.bodies.push_back(b);
+  }
+  for (Vehicle& vehicle : vehicles_) {
+    accrue(vehicle);
+    s.vehicles.push_back(vehicle.view);
+  }
+  return s;
+}
+
+std::optional<ApiError> FakeBackend::apply(const VehicleChange& change) {
+  std::lock_guard lock(mutex_);
+  auto find = [this](const std::string& name) {
+    return std::find_if(vehicles_.begin(), vehicles_.end(),
+                        [&](const Vehicle& v) { return v.view.name == name; });
+  };
+  std::optional<ApiError> refusal;
+  std::visit(
+      [&](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, AddVehicle>) {
+          if (find(c.spec.name) != vehicles_.end()) {
+            refusal = ApiError{409, "a vehicle named \"" + c.spec.name + "\" exists", "name"};
+          } else if (c.spec.link.find(':', c.spec.link.find("//") + 2) == std::string::npos &&
+                     c.spec.link.rfind("serial://", 0) != 0) {
+            // What the daemon's link parser says about udp://host without a port.
+            refusal = ApiError{422, "link: missing port", "link"};
+          } else {
+            vehicles_.push_back(Vehicle{make_vehicle(c.spec), t_s_, 0.0});
+          }
+        } else if constexpr (std::is_same_v<T, RemoveVehicle>) {
+          auto it = find(c.name);
+          if (it == vehicles_.end())
+            refusal = ApiError{404, "no vehicle named " + c.name, ""};
+          else
+            vehicles_.erase(it);
+        } else {
+          auto it = find(c.patch.name);
+          if (it == vehicles_.end()) {
+            refusal = ApiError{404, "no vehicle named " + c.patch.name, ""};
+            return;
+          }
+          accrue(*it);  // counters up to now at the old rate
+          if (c.patch.rate_hz) it->view.rate_hz = *c.patch.rate_hz;
+          if (c.patch.messages) it->view.messages = *c.patch.messages;
+          if (c.patch.paused) it->view.paused = *c.patch.paused;
+        }
+      },
+      change);
+  if (!refusal) applied_.push_back(change);
+  return refusal;
+}
+
+void FakeBackend::set_time(double t_s) {
+  std::lock_guard lock(mutex_);
+  t_s_ = t_s;
+}
+
+std::vector<VehicleChange> FakeBackend::applied() const {
+  std::lock_guard lock(mutex_);
+  return applied_;
+}
+
+int FakeBackend::status_calls() const {
+  std::lock_guard lock(mutex_);
+  return status_calls_;
+}
+
+}  // namespace mocaplink::web::testing

@@ -1,0 +1,319 @@
+// The dashboard page: the Station card, one card per vehicle (the original's Sender window),
+// live plots and alerts, all from the /api/events stream; changes go out at once as PATCH/POST/
+// DELETE (docs/api.md). Plain ES module, no framework, no build step.
+import { ApiError, followEvents, loadToken, request, saveToken } from './api.js';
+import { Colors, History, drawTopDown, drawXYZ } from './plots.js';
+
+const $ = (selector, root = document) => root.querySelector(selector);
+
+const state = {
+  token: loadToken(),
+  status: null,
+  history: new History(),
+  colors: new Colors(),
+  cards: new Map(),   // vehicle name → card elements
+  plotBody: '',       // body chosen for the x/y/z plot
+  stopEvents: null,
+};
+
+// ---- formatting ---------------------------------------------------------------------------
+
+const num = (v, digits = 1, unit = '') => (v === null || v === undefined ? '–' : `${Number(v).toFixed(digits)}${unit}`);
+const int = (v) => (v === null || v === undefined ? '–' : Number(v).toLocaleString('en-US'));
+
+/** Shows `text` in a coloured pill; `role` is the element's own class, kept across updates. */
+function pill(el, text, kind, role = '') {
+  el.textContent = text;
+  el.className = `${role} pill pill-${kind}`.trim();
+}
+
+function duration(s) {
+  s = Math.floor(s);
+  const h = Math.floor(s / 3600), m = Math.floor((s % 3600) / 60), sec = s % 60;
+  return h ? `${h}h ${m}m` : m ? `${m}m ${sec}s` : `${sec}s`;
+}
+
+// ---- Station --------------------------------------------------------------------------------
+
+function renderStation(station) {
+  $('#st-source').textContent = station.source;
+  const stateEl = $('#st-state');
+  stateEl.textContent = station.connected ? 'connected' : `disconnected${station.error ? `: ${station.error}` : ''}`;
+  stateEl.className = station.connected ? 'ok' : 'bad';
+  $('#st-rate').textContent = `${num(station.frame_rate_hz, 1, ' Hz')}${station.nominal_rate_hz ? ` / ${num(station.nominal_rate_hz, 0)}` : ''}`;
+  $('#st-latency').textContent = station.latency_ms === null ? 'not reported' : num(station.latency_ms, 2, ' ms');
+  $('#st-frames').textContent = int(station.frames);
+  $('#st-dropped').textContent = int(station.dropped);
+
+  const tbody = $('#bodies tbody');
+  const rows = station.bodies.map((b) => {
+    const tr = document.createElement('tr');
+    tr.dataset.body = b.name;
+    if (b.state === 'lost') tr.className = 'lost';
+    const p = b.p_m || [null, null, null];
+    const cells = [b.name, b.state === 'lost' ? 'LOST' : b.state, num(p[0], 3), num(p[1], 3), num(p[2], 3), int(b.rejected)];
+    cells.forEach((text, i) => {
+      const td = document.createElement('td');
+      if (i === 0) {
+        const dot = document.createElement('span');
+        dot.className = 'swatch';
+        dot.style.background = state.colors.of(b.name);
+        td.append(dot);
+      }
+      td.append(text);
+      if (i >= 2) td.className = 'num';
+      tr.append(td);
+    });
+    return tr;
+  });
+  tbody.replaceChildren(...rows);
+
+  // Body chooser for the x/y/z plot and the add-vehicle form's suggestions.
+  const names = station.bodies.map((b) => b.name);
+  const select = $('#plot-body');
+  if ([...select.options].map((o) => o.value).join('\n') !== names.join('\n')) {
+    select.replaceChildren(...names.map((n) => new Option(n, n)));
+    $('#body-names').replaceChildren(...names.map((n) => new Option(n, n)));
+  }
+  if (!names.includes(state.plotBody)) state.plotBody = names[0] || '';
+  select.value = state.plotBody;
+}
+
+// ---- Vehicles -------------------------------------------------------------------------------
+
+async function patchVehicle(card, name, change) {
+  card.error.textContent = '';
+  try {
+    const vehicle = await request('PATCH', `/api/vehicles/${encodeURIComponent(name)}`, change, state.token);
+    renderVehicle(card, vehicle, true);
+  } catch (e) {
+    card.error.textContent = e instanceof ApiError ? e.message : String(e);
+    if (e.status === 401) showTokenForm();
+  }
+}
+
+function createCard(name) {
+  const root = $('#vehicle-template').content.firstElementChild.cloneNode(true);
+  root.dataset.vehicle = name;
+  const card = {
+    root,
+    rate: $('.v-rate', root),
+    rateOut: $('.v-rate-out', root),
+    pause: $('.v-pause', root),
+    messages: $('.v-messages', root),
+    remove: $('.v-remove', root),
+    error: $('.v-error', root),
+    dragging: false,
+    messageKey: '',
+    vehicle: null,
+  };
+  card.rate.setAttribute('aria-label', `${name} send rate`);
+  card.rate.addEventListener('input', () => {
+    card.dragging = true;
+    card.rateOut.textContent = `${card.rate.value} Hz`;
+  });
+  card.rate.addEventListener('change', async () => {
+    await patchVehicle(card, name, { rate_hz: Number(card.rate.value) });
+    card.dragging = false;
+  });
+  card.pause.addEventListener('click', () => patchVehicle(card, name, { paused: !card.vehicle.paused }));
+  card.messages.addEventListener('change', () => {
+    const ticked = [...card.messages.querySelectorAll('input:checked')].map((i) => i.value);
+    patchVehicle(card, name, { messages: ticked });
+  });
+  // Two-step remove: the first click arms the button for 3 s.
+  let disarm = null;
+  card.remove.addEventListener('click', async () => {
+    if (!card.remove.classList.contains('armed')) {
+      card.remove.classList.add('armed');
+      card.remove.textContent = 'Really remove?';
+      disarm = setTimeout(() => {
+        card.remove.classList.remove('armed');
+        card.remove.textContent = 'Remove';
+      }, 3000);
+      return;
+    }
+    clearTimeout(disarm);
+    try {
+      await request('DELETE', `/api/vehicles/${encodeURIComponent(name)}`, undefined, state.token);
+      root.remove();
+      state.cards.delete(name);
+    } catch (e) {
+      card.error.textContent = e.message;
+    }
+  });
+  $('#vehicles').append(root);
+  return card;
+}
+
+function renderVehicle(card, v, fromPatch = false) {
+  card.vehicle = v;
+  const r = card.root;
+  $('.v-name', r).textContent = v.name;
+  const linkKind = { up: 'ok', silent: 'warn', down: 'bad' }[v.link_state] || 'warn';
+  pill($('.v-link-state', r), v.link_state === 'up' ? 'link up' : `link ${v.link_state}`, linkKind, 'v-link-state');
+  $('.v-body', r).textContent = v.body;
+  $('.v-link', r).textContent = v.link;
+  $('.v-sysid', r).textContent = v.system_id;
+  $('.v-profile', r).textContent = v.profile;
+  $('.v-sent', r).textContent = int(v.sent_total);
+  $('.v-actual', r).textContent = v.paused ? 'paused' : num(v.send_rate_hz, 1, ' Hz');
+
+  const hb = v.heartbeat;
+  $('.v-heartbeat', r).textContent = hb
+    ? `${hb.type} · ${hb.autopilot} · ${hb.armed ? 'ARMED' : 'disarmed'} · ${hb.mode} (${num(hb.age_s, 1, ' s')} ago)`
+    : 'none received';
+  const ts = $('.v-timesync', r);
+  ts.textContent = v.timesync.state === 'synced' ? `synced, ${num(v.timesync.rtt_ms, 1, ' ms')} rtt` : v.timesync.state;
+  ts.className = `v-timesync ${v.timesync.state}`;
+  const origin = $('.v-origin', r);
+  origin.textContent = { not_needed: 'not needed', sending: 'not confirmed', confirmed: 'confirmed' }[v.origin.state] || v.origin.state;
+  origin.className = `v-origin ${v.origin.state}`;
+  const ag = v.agreement;
+  const box = $('.v-agreement-box', r);
+  box.className = `span2 v-agreement-box ${ag.verdict}`;
+  $('.v-agreement', r).textContent = ag.verdict === 'unknown' && ag.yaw_offset_deg === null
+    ? 'waiting for the vehicle\'s estimate'
+    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}`;
+
+  // Inputs: never overwrite what the user is doing.
+  if (!card.dragging && document.activeElement !== card.rate) {
+    card.rate.value = Math.round(v.rate_hz);
+    card.rateOut.textContent = `${num(v.rate_hz, v.rate_hz % 1 ? 1 : 0)} Hz`;
+  }
+  card.pause.textContent = v.paused ? 'Resume' : 'Pause';
+  card.pause.classList.toggle('secondary', !v.paused);
+  card.pause.setAttribute('aria-pressed', String(v.paused));
+  const offered = v.available_messages.length ? v.available_messages : v.messages;
+  const key = offered.join(',');
+  if (card.messageKey !== key) {
+    card.messageKey = key;
+    card.messages.replaceChildren(...offered.map((m) => {
+      const label = document.createElement('label');
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.value = m;
+      label.append(box, m);
+      return label;
+    }));
+  }
+  if (fromPatch || !card.messages.contains(document.activeElement)) {
+    for (const input of card.messages.querySelectorAll('input')) input.checked = v.messages.includes(input.value);
+  }
+}
+
+function renderVehicles(vehicles) {
+  const seen = new Set();
+  for (const v of vehicles) {
+    seen.add(v.name);
+    const card = state.cards.get(v.name) || createCard(v.name);
+    state.cards.set(v.name, card);
+    renderVehicle(card, v);
+  }
+  for (const [name, card] of state.cards) {
+    if (!seen.has(name)) {
+      card.root.remove();
+      state.cards.delete(name);
+    }
+  }
+}
+
+// ---- Alerts ---------------------------------------------------------------------------------
+
+function renderAlerts(alerts) {
+  $('#alerts').replaceChildren(...alerts.map((a) => {
+    const div = document.createElement('div');
+    div.className = `alert ${a.level}`;
+    div.dataset.kind = a.kind;
+    const b = document.createElement('b');
+    b.textContent = a.kind.replaceAll('_', ' ');
+    div.append(b, a.message);
+    return div;
+  }));
+}
+
+// ---- Plots ----------------------------------------------------------------------------------
+
+function renderPlots() {
+  const s = state.status;
+  if (!s) return;
+  drawTopDown($('#topdown'), s.station.bodies, state.history, state.colors);
+  drawXYZ($('#xyz'), state.history.samples(state.plotBody), state.history.now);
+}
+
+// ---- Wiring ---------------------------------------------------------------------------------
+
+function onStatus(status) {
+  state.status = status;
+  state.history.add(status);
+  $('#uptime').textContent = `up ${duration(status.uptime_s)}`;
+  renderStation(status.station);
+  renderVehicles(status.vehicles);
+  renderAlerts(status.alerts);
+  requestAnimationFrame(renderPlots);
+}
+
+function onStreamState(s) {
+  if (s === 'live') pill($('#live'), 'live', 'ok');
+  else if (s === 'unauthorized') showTokenForm();
+  else pill($('#live'), 'offline — retrying', 'bad');
+}
+
+function showTokenForm() {
+  pill($('#live'), 'token required', 'warn');
+  $('#token-form').hidden = false;
+  $('main').hidden = true;
+}
+
+function start() {
+  state.stopEvents?.();
+  state.stopEvents = followEvents(() => state.token, onStatus, onStreamState);
+}
+
+$('#token-form').addEventListener('submit', (e) => {
+  e.preventDefault();
+  state.token = $('#token-input').value.trim();
+  saveToken(state.token);
+  $('#token-form').hidden = true;
+  $('main').hidden = false;
+  start();
+});
+
+$('#plot-body').addEventListener('change', (e) => {
+  state.plotBody = e.target.value;
+  renderPlots();
+});
+
+$('#add-vehicle').addEventListener('submit', async (e) => {
+  e.preventDefault();
+  const form = e.target;
+  const error = $('#add-error');
+  error.textContent = '';
+  for (const input of form.querySelectorAll('[aria-invalid]')) input.removeAttribute('aria-invalid');
+  const data = Object.fromEntries(new FormData(form));
+  const spec = {
+    name: data.name.trim(),
+    body: data.body.trim(),
+    link: data.link.trim(),
+    system_id: Number(data.system_id),
+    profile: data.profile,
+    rate_hz: Number(data.rate_hz),
+  };
+  try {
+    const vehicle = await request('POST', '/api/vehicles', spec, state.token);
+    form.reset();
+    const card = state.cards.get(vehicle.name) || createCard(vehicle.name);
+    state.cards.set(vehicle.name, card);
+    renderVehicle(card, vehicle);
+  } catch (err) {
+    error.textContent = err.message;
+    const field = err.field && form.elements.namedItem(err.field);
+    if (field) {
+      field.setAttribute('aria-invalid', 'true');
+      field.focus();
+    }
+  }
+});
+
+window.addEventListener('resize', () => requestAnimationFrame(renderPlots));
+start();
