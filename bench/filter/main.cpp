@@ -43,7 +43,8 @@ void write_csv(const std::string& path, const mb::Scenario& scenario,
     out << "\n\n";  // gnuplot index separator
   };
   std::vector<mb::Output> truth;
-  for (double t = from; t <= to; t += 0.001) truth.push_back({t, {}, scenario.truth(t).v_ned_mps});
+  for (double t = from; t <= to; t += 0.001)
+    truth.push_back({t, Eigen::Vector3d::Zero(), scenario.truth(t).v_ned_mps});
   dump("truth", truth);
   dump("tracker", mb::run_tracker(samples, false, config));
   dump("finite_difference", mb::run_finite_difference(samples, false));
