@@ -146,9 +146,10 @@ void parse_loop(benchmark::State& state, const std::vector<std::uint8_t>& stream
       ++frames;
     });
   }
-  if (frames != state.iterations() * kStreamFrames) state.SkipWithError("frames were dropped");
+  const auto passes = static_cast<std::size_t>(state.iterations());
+  if (frames != passes * kStreamFrames) state.SkipWithError("frames were dropped");
   state.SetItemsProcessed(static_cast<std::int64_t>(frames));
-  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * stream.size()));
+  state.SetBytesProcessed(static_cast<std::int64_t>(passes * stream.size()));
 }
 
 void BM_ParseMixedStream(benchmark::State& state) {
