@@ -242,10 +242,13 @@ void Daemon::save_signing() {
 void Daemon::stop(const std::string& reason) {
   if (stopping_) return;
   spdlog::info("stopping: {}", reason);
-  // 1. No more frames: join the source thread, then handle what it queued.
+  // 1. No more frames: join the source thread. Frames still queued are discarded, not
+  //    processed: poses from them would be stale, and a loop that fell behind must not delay
+  //    the stop by working through its backlog.
   source_->stop();
-  drain();
   stopping_ = true;
+  batch_.clear();
+  if (queue_.drain(batch_) > 0) spdlog::info("{} queued frames discarded", batch_.size());
   tick_timer_.cancel();
   flush_timer_.cancel();
   signing_timer_.cancel();
