@@ -22,6 +22,7 @@
 
 #include "commands.hpp"
 #include "mocaplink/core/station.hpp"
+#include "mocaplink/io/clock.hpp"
 #include "mocaplink/sources/source_factory.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
@@ -35,12 +36,6 @@ std::atomic<bool> g_interrupted{false};  // set by SIGINT/SIGTERM; async-signal-
 
 extern "C" void on_signal(int) {
   g_interrupted.store(true);
-}
-
-core::HostTime host_now() {
-  return core::host_time_from_ns(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
-          .count());
 }
 
 /// A started Source feeding a Station, thread-safe: the source's thread calls in, the main thread
@@ -93,7 +88,7 @@ class StationSession {
 
   [[nodiscard]] core::StationSnapshot snapshot() {
     const std::lock_guard lock(mutex_);
-    return station_.snapshot(host_now());
+    return station_.snapshot(io::host_now());
   }
   [[nodiscard]] std::pair<SourceState, std::string> state() {
     const std::lock_guard lock(mutex_);

@@ -6,16 +6,11 @@
 #include <optional>
 #include <utility>
 
+#include "mocaplink/io/clock.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
 namespace mocaplink::sources {
 namespace {
-
-core::HostTime host_now() {
-  return core::host_time_from_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                     std::chrono::steady_clock::now().time_since_epoch())
-                                     .count());
-}
 
 /// Reads lines of at most kMaxRecordingLineBytes (+ '\r') bytes: a longer line is reported, not
 /// buffered, so a hostile file cannot make us allocate without bound.
@@ -147,7 +142,7 @@ void ReplaySource::run(const FrameSink& on_frame, const StateSink& on_state) {
       ++delivered;
       ++delivered_this_pass;
       counters_.frames.fetch_add(1, std::memory_order_relaxed);
-      if (on_frame) on_frame(std::move(*frame), host_now());
+      if (on_frame) on_frame(std::move(*frame), io::host_now());
     }
     schedule.next_pass();
   } while (config_.loop && delivered_this_pass > 0);

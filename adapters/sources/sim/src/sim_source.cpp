@@ -5,17 +5,9 @@
 #include <cstdio>
 #include <utility>
 
+#include "mocaplink/io/clock.hpp"
+
 namespace mocaplink::sources {
-namespace {
-
-core::HostTime host_now() {
-  return core::host_time_from_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                     std::chrono::steady_clock::now().time_since_epoch())
-                                     .count());
-}
-
-}  // namespace
-
 SimSource::SimSource(SimConfig config, std::string url)
     : world_(std::move(config)), url_(std::move(url)) {}
 
@@ -59,7 +51,7 @@ void SimSource::run(FrameSink on_frame, StateSink on_state) {
     if (world_.dropped(n)) continue;
     core::MocapFrame frame = world_.frame(n);
     counters_.frames.fetch_add(1, std::memory_order_relaxed);
-    if (on_frame) on_frame(std::move(frame), host_now());
+    if (on_frame) on_frame(std::move(frame), io::host_now());
   }
   if (on_state)
     on_state(SourceState::finished, "simulation reached frames=" + std::to_string(config.frames));
