@@ -137,7 +137,9 @@ function writeConfig(file, source, vehicles, extra = '') {
   const value = (v) => (typeof v === 'number' ? String(v) : JSON.stringify(v));
   const blocks = vehicles.map((v) => `[[vehicle]]\n${Object.entries(v)
     .map(([k, x]) => `${k} = ${value(x)}`).join('\n')}\n`);
-  fs.writeFileSync(file, `[mocap]\nsource = ${JSON.stringify(source)}\n${extra}\n${blocks.join('')}`);
+  // [http] on port 0: parallel tests must not compete for the dashboard's default port 8080.
+  fs.writeFileSync(file, `[mocap]\nsource = ${JSON.stringify(source)}\n${extra}\n` +
+    `[http]\nlisten = "127.0.0.1:0"\n${blocks.join('')}`);
   return file;
 }
 

@@ -40,6 +40,8 @@ north = "+x"
 latitude_deg = ${ORIGIN.latitude_deg}
 longitude_deg = ${ORIGIN.longitude_deg}
 altitude_m = ${ORIGIN.altitude_m}
+[http]
+listen = "127.0.0.1:0"
 [tracking]
 loss_timeout_ms = 100
 reset_after_ms = 200
