@@ -132,7 +132,10 @@ export function drawTopDown(canvas, bodies, history, colors) {
       ctx.stroke();
     }
     ctx.fillStyle = '#17202b';
-    ctx.fillText(body.state === 'tracking' ? body.name : `${body.name} (${body.state})`, px + 9, py - 7);
+    const label = body.state === 'tracking' ? body.name : `${body.name} (${body.state})`;
+    const width = ctx.measureText(label).width;
+    // Labels stay inside the canvas: left of the dot when there is no room on the right.
+    ctx.fillText(label, px + 9 + width > w ? px - 9 - width : px + 9, Math.max(11, py - 7));
   }
 }
 

@@ -56,9 +56,6 @@ int run_command(const RunOptions& options) {
   spdlog::info("mocaplink {}: source {}, {} vehicle{}", MOCAPLINK_VERSION,
                settings.config.mocap.source.text, settings.config.vehicles.size(),
                settings.config.vehicles.size() == 1 ? "" : "s");
-  // The dashboard (adapters/web) is a later issue: say so rather than pretend to listen.
-  spdlog::info("dashboard: not available in this build (configured for http://{})",
-               config::to_string(settings.config.http.listen));
   return run_daemon(settings);
 }
 

@@ -23,6 +23,7 @@
 #include "mocaplink/mavlink/signing.hpp"
 #include "mocaplink/sources/source_factory.hpp"
 #include "run_config.hpp"
+#include "run_dashboard.hpp"
 #include "run_links.hpp"
 #include "run_recorder.hpp"
 #include "run_summary.hpp"
@@ -108,6 +109,7 @@ class Daemon {
   asio::steady_timer summary_timer_;
   asio::steady_timer stop_timer_;
   Summary summary_;
+  std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
 };
 
@@ -276,6 +278,14 @@ int Daemon::run() {
       loop_.stop();
     }
   });
+  // The dashboard first: a bad [http] listen stops us before anything is sent.
+  auto dashboard =
+      RunDashboard::start(loop_, DashboardAccess{bridge_, settings_.config, vehicles_});
+  if (const auto* error = std::get_if<std::string>(&dashboard)) {
+    spdlog::error("{}", *error);
+    return kExitRuntime;
+  }
+  dashboard_ = std::move(std::get<std::unique_ptr<RunDashboard>>(dashboard));
   restore_signing();
   open_links();
   for (std::size_t i = 0; i < vehicles_.size(); ++i) {
@@ -292,7 +302,8 @@ int Daemon::run() {
   });
   dispatch(bridge_.on_tick(io::host_now()));  // first heartbeats at once
   loop_.run();
-  source_->stop();  // idempotent; covers a loop stopped by a second signal
+  dashboard_.reset();  // requests still waiting for the loop give up within a second
+  source_->stop();     // idempotent; covers a loop stopped by a second signal
   return kExitClean;
 }
 

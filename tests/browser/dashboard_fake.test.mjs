@@ -177,7 +177,7 @@ describe('dashboard against the fake backend', () => {
 
   test('screenshot at desktop width', async () => {
     await page.setViewportSize({ width: 1280, height: 900 });
-    await page.waitForTimeout(1500);  // trails grow for a moment
+    await page.waitForTimeout(800);  // trails grow for a moment
     await page.screenshot({ path: path.join(artifacts, 'dashboard-fake.png'), fullPage: true });
     // The one refused request above (a link without a port) is the only expected console error.
     assert.deepEqual(browser.errors.filter((e) => !/status of 422/.test(e)), []);

@@ -1,0 +1,159 @@
+// RunDashboard (run_dashboard.hpp): the daemon side of the dashboard. HTTP threads post each
+// request to the event loop and wait for its answer (bounded), so the Bridge is only ever touched
+// by the loop thread, and a slow or stopping loop cannot hang the HTTP server.
+#include "run_dashboard.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <future>
+#include <mutex>
+
+#include <spdlog/spdlog.h>
+#include <asio/post.hpp>
+
+#include "mocaplink/io/clock.hpp"
+#include "mocaplink/web/bridge_views.hpp"
+#include "mocaplink/web/dashboard_server.hpp"
+
+namespace mocaplink::app {
+namespace {
+
+/// How long an HTTP thread waits for the loop before answering 503 / the last status.
+constexpr auto kLoopTimeout = std::chrono::seconds(1);
+
+std::optional<core::MessageSet> message_set(const std::vector<std::string>& names) {
+  core::MessageSet set;
+  for (const std::string& name : names) {
+    const auto kind = core::parse_message_kind(name);
+    if (!kind) return std::nullopt;
+    set.insert(*kind);
+  }
+  return set;
+}
+
+}  // namespace
+
+class RunDashboard::Backend final : public web::DashboardBackend {
+ public:
+  Backend(asio::io_context& loop, DashboardAccess access)
+      : loop_(loop), access_(access), builder_(io::host_now()) {
+    for (const auto& v : access_.config.vehicles)
+      context_.links.push_back(config::to_string(v.link));
+    context_.source = access_.config.mocap.source.text;
+  }
+
+  web::StatusView status() override {
+    auto answer = on_loop<web::StatusView>([this] { return build_status(); });
+    std::lock_guard lock(last_mutex_);
+    if (answer) last_status_ = *answer;
+    return last_status_;  // the loop did not answer in time: the previous picture
+  }
+
+  std::optional<web::ApiError> apply(const web::VehicleChange& change) override {
+    auto answer =
+        on_loop<std::optional<web::ApiError>>([this, change] { return apply_on_loop(change); });
+    if (!answer) return web::ApiError{503, "the daemon did not answer in time; try again", ""};
+    return *answer;
+  }
+
+  void stop() { stopping_ = true; }
+
+ private:
+  // Runs `f` on the loop and waits up to kLoopTimeout; std::nullopt on timeout or when stopping.
+  template <typename T, typename F>
+  std::optional<T> on_loop(F f) {
+    if (stopping_) return std::nullopt;
+    auto promise = std::make_shared<std::promise<T>>();
+    auto future = promise->get_future();
+    asio::post(loop_, [promise, f = std::move(f)]() mutable { promise->set_value(f()); });
+    if (future.wait_for(kLoopTimeout) != std::future_status::ready) return std::nullopt;
+    return future.get();
+  }
+
+  web::StatusView build_status() {
+    context_.links_down.assign(access_.vehicles.size(), false);
+    for (std::size_t i = 0; i < access_.vehicles.size(); ++i) {
+      const auto state = access_.vehicles[i].link->state();
+      context_.links_down[i] = state == io::LinkState::down || state == io::LinkState::closed;
+    }
+    return builder_.build(access_.bridge.snapshot(io::host_now()), context_);
+  }
+
+  std::optional<web::ApiError> apply_on_loop(const web::VehicleChange& change) {
+    if (const auto* update = std::get_if<web::UpdateVehicle>(&change))
+      return update_vehicle(update->patch);
+    // Adding and removing vehicles needs a link opened or closed and the Bridge rebuilt; not
+    // supported by this daemon yet.
+    return web::ApiError{409,
+                         "adding and removing vehicles at run time is not supported yet; "
+                         "edit the configuration and restart",
+                         ""};
+  }
+
+  std::optional<web::ApiError> update_vehicle(const web::VehiclePatch& patch) {
+    const auto& vehicles = access_.config.vehicles;
+    std::size_t index = vehicles.size();
+    for (std::size_t i = 0; i < vehicles.size(); ++i) {
+      if (vehicles[i].name == patch.name) index = i;
+    }
+    if (index == vehicles.size())
+      return web::ApiError{404, "no vehicle named \"" + patch.name + "\"", ""};
+    // Check everything first, then apply: nothing half-applied.
+    std::optional<core::MessageSet> messages;
+    if (patch.messages) {
+      messages = message_set(*patch.messages);
+      if (!messages) return web::ApiError{422, "messages: unknown message", "messages"};
+      if (messages->needs_origin() && !access_.bridge.config().origin) {
+        return web::ApiError{422,
+                             "messages: hil_gps and gps_input need an [origin] in the "
+                             "configuration",
+                             "messages"};
+      }
+    }
+    if (patch.rate_hz && !(*patch.rate_hz > 0.0 && *patch.rate_hz <= core::kMaxSenderRateHz)) {
+      return web::ApiError{422, "rate_hz: out of range", "rate_hz"};
+    }
+    if (patch.rate_hz && !access_.bridge.set_rate_hz(index, *patch.rate_hz)) {
+      return web::ApiError{422, "rate_hz: refused by the sender", "rate_hz"};
+    }
+    if (messages) (void)access_.bridge.set_messages(index, *messages);
+    if (patch.paused) (void)access_.bridge.set_paused(index, *patch.paused);
+    spdlog::info("dashboard: vehicle {}:{}{}{}", patch.name,
+                 patch.rate_hz ? fmt::format(" rate_hz={}", *patch.rate_hz) : "",
+                 messages ? fmt::format(" messages=[{}]", core::to_string(*messages)) : "",
+                 patch.paused ? fmt::format(" paused={}", *patch.paused) : "");
+    return std::nullopt;
+  }
+
+  asio::io_context& loop_;
+  DashboardAccess access_;
+  web::BridgeStatusBuilder builder_;  // loop thread only
+  web::BridgeStatusContext context_;  // loop thread only
+  std::atomic<bool> stopping_{false};
+  std::mutex last_mutex_;
+  web::StatusView last_status_;
+};
+
+std::variant<std::unique_ptr<RunDashboard>, std::string> RunDashboard::start(
+    asio::io_context& loop, DashboardAccess access) {
+  std::unique_ptr<RunDashboard> dashboard(new RunDashboard());
+  dashboard->backend_ = std::make_unique<Backend>(loop, access);
+  web::DashboardServerConfig server_config;
+  server_config.host = access.config.http.listen.host;
+  server_config.port = access.config.http.listen.port;
+  server_config.token = access.config.http.token;
+  dashboard->server_ = std::make_unique<web::DashboardServer>(*dashboard->backend_, server_config);
+  if (auto error = dashboard->server_->start()) return "dashboard: " + *error;
+  return dashboard;
+}
+
+void RunDashboard::stop() {
+  if (backend_) backend_->stop();
+  if (server_) server_->stop();
+}
+
+RunDashboard::~RunDashboard() {
+  stop();
+}
+
+}  // namespace mocaplink::app

@@ -1,0 +1,51 @@
+// The dashboard of `mocaplink run` (adapters/web, docs/api.md): a DashboardServer whose backend
+// runs every request on the daemon's event loop, so the Bridge stays single-threaded.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <asio/io_context.hpp>
+
+#include "mocaplink/config/config.hpp"
+#include "mocaplink/core/bridge.hpp"
+#include "run_links.hpp"
+
+namespace mocaplink::web {
+class DashboardServer;
+}
+
+namespace mocaplink::app {
+
+/// What the dashboard reads and changes; all of it is touched on the loop thread only.
+struct DashboardAccess {
+  core::Bridge& bridge;
+  const config::Config& config;
+  const std::vector<VehicleLink>& vehicles;  ///< index as in the Bridge
+};
+
+class RunDashboard {
+ public:
+  /// Starts serving on config.http (listen, token). Returns a one-sentence error when it cannot
+  /// (non-loopback without a token, address in use, host does not resolve). Call on the loop
+  /// thread before loop.run(); `loop` and `access` must outlive the returned object.
+  [[nodiscard]] static std::variant<std::unique_ptr<RunDashboard>, std::string> start(
+      asio::io_context& loop, DashboardAccess access);
+
+  /// Stops the server; requests still waiting for the loop give up within a second. Idempotent;
+  /// the destructor calls it.
+  void stop();
+  ~RunDashboard();
+  RunDashboard(const RunDashboard&) = delete;
+  RunDashboard& operator=(const RunDashboard&) = delete;
+
+ private:
+  class Backend;
+  RunDashboard() = default;
+  std::unique_ptr<Backend> backend_;
+  std::unique_ptr<web::DashboardServer> server_;
+};
+
+}  // namespace mocaplink::app

@@ -1,0 +1,153 @@
+// End to end (issue 6): the dashboard of the real daemon, `mocaplink run` with the built-in sim
+// source, in Chromium; the vehicle's MAVLink stream is received on a UDP socket and decoded with
+// node-mavlink (an independent decoder) to see that the page's controls change what is sent.
+import assert from 'node:assert/strict';
+import dgram from 'node:dgram';
+import { createRequire } from 'node:module';
+import path from 'node:path';
+import { PassThrough } from 'node:stream';
+import { after, before, describe, test } from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+import { artifacts, horizontalOverflow, launchBrowser, startProcess, stopProcess } from './support.mjs';
+
+const require = createRequire(import.meta.url);
+const here = path.dirname(fileURLToPath(import.meta.url));
+const { MavLinkPacketSplitter, MavLinkPacketParser } = require(path.join(here, '../../node_modules/node-mavlink'));
+
+const binary = process.env.MOCAPLINK_BINARY;
+assert.ok(binary, 'MOCAPLINK_BINARY must name the mocaplink binary');
+
+const ODOMETRY = 331;
+const HEARTBEAT = 0;
+
+/** A UDP "vehicle": records the arrival time of every decoded MAVLink message by msgid. */
+function startReceiver() {
+  return new Promise((resolve) => {
+    const socket = dgram.createSocket('udp4');
+    const arrivals = [];  // { t (ms, performance.now), msgid }
+    const bytes = new PassThrough();
+    bytes.pipe(new MavLinkPacketSplitter()).pipe(new MavLinkPacketParser())
+      .on('data', (packet) => arrivals.push({ t: performance.now(), msgid: packet.header.msgid }));
+    socket.on('message', (datagram) => bytes.write(datagram));
+    socket.bind(0, '127.0.0.1', () => resolve({ socket, port: socket.address().port, arrivals }));
+  });
+}
+
+/** Messages of `msgid` per second over [fromMs, toMs] (performance.now times). */
+function rate(arrivals, msgid, fromMs, toMs) {
+  const n = arrivals.filter((a) => a.msgid === msgid && a.t >= fromMs && a.t < toMs).length;
+  return n / ((toMs - fromMs) / 1000);
+}
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+/** Waits `ms`, then returns the rate of `msgid` over that time. */
+async function measure(receiver, msgid, ms) {
+  const from = performance.now();
+  await sleep(ms);
+  return rate(receiver.arrivals, msgid, from, performance.now());
+}
+
+describe('dashboard of mocaplink run (sim source)', () => {
+  let daemon;
+  let receiver;
+  let browser;
+  let page;
+  const log = [];
+
+  before(async () => {
+    receiver = await startReceiver();
+    // The demo (sim source, vehicle "demo" following Body1 with px4 at 50 Hz), its link pointed
+    // at our receiver and the dashboard on a free port.
+    const started = await startProcess(binary, ['run', '--http', '127.0.0.1:0',
+      '--vehicle', `demo:link=udp://127.0.0.1:${receiver.port}`],
+    /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//, log);
+    daemon = started.child;
+    browser = await launchBrowser();
+    page = browser.page;
+    await page.goto(`http://127.0.0.1:${started.match[1]}/`);
+    await page.locator('#live', { hasText: 'live' }).waitFor();
+  });
+
+  after(async () => {
+    await browser?.close();
+    if (daemon) await stopProcess(daemon, 'SIGINT');
+    receiver?.socket.close();
+  });
+
+  test('lists the simulated bodies and the demo vehicle', async () => {
+    await page.locator('#bodies tbody tr').nth(2).waitFor();
+    const names = await page.locator('#bodies tbody tr td:first-child').allTextContents();
+    assert.deepEqual(names.slice(0, 3), ['Body1', 'Body2', 'Body3']);
+    assert.match(await page.locator('#st-source').textContent(), /^sim:/);
+    await page.locator('#st-state', { hasText: 'connected' }).waitFor();
+    const card = page.locator('[data-vehicle="demo"]');
+    assert.equal(await card.locator('.v-link').textContent(), `udp://127.0.0.1:${receiver.port}`);
+    assert.equal(await card.locator('.v-profile').textContent(), 'px4');
+  });
+
+  test('shows live updates', async () => {
+    const frames = async () => Number((await page.locator('#st-frames').textContent()).replaceAll(',', ''));
+    const first = await frames();
+    await page.waitForFunction(
+      (f) => Number(document.querySelector('#st-frames').textContent.replaceAll(',', '')) > f + 50,
+      first, { timeout: 5000 });
+    const x = await page.locator('tr[data-body="Body1"] td').nth(2).textContent();
+    await page.waitForFunction(
+      (before) => document.querySelector('tr[data-body="Body1"] td:nth-child(3)').textContent !== before,
+      x, { timeout: 5000 });
+  });
+
+  test('the rate slider changes the send rate the vehicle receives', async () => {
+    const before50 = await measure(receiver, ODOMETRY, 2000);
+    assert.ok(before50 > 40 && before50 < 60, `ODOMETRY at ${before50} Hz before, configured 50`);
+
+    const card = page.locator('[data-vehicle="demo"]');
+    const patched = page.waitForResponse((r) => r.request().method() === 'PATCH');
+    await card.locator('.v-rate').fill('20');
+    const response = await patched;
+    assert.equal(response.status(), 200);
+    assert.deepEqual(response.request().postDataJSON(), { rate_hz: 20 });
+    await sleep(300);  // frames already in flight
+    const after20 = await measure(receiver, ODOMETRY, 2000);
+    assert.ok(after20 > 15 && after20 < 25, `ODOMETRY at ${after20} Hz after the slider went to 20`);
+    // The card's measured rate follows.
+    await page.waitForFunction(() => {
+      const v = parseFloat(document.querySelector('[data-vehicle="demo"] .v-actual').textContent);
+      return v > 15 && v < 25;
+    }, null, { timeout: 5000 });
+  });
+
+  test('unticking a message stops it', async () => {
+    const card = page.locator('[data-vehicle="demo"]');
+    const patched = page.waitForResponse((r) => r.request().method() === 'PATCH');
+    await card.locator('.v-messages input[value="odometry"]').uncheck();
+    const response = await patched;
+    assert.equal(response.status(), 200);
+    assert.deepEqual(response.request().postDataJSON(), { messages: [] });
+    await sleep(300);
+    const from = performance.now();
+    await sleep(2500);
+    const to = performance.now();
+    assert.equal(rate(receiver.arrivals, ODOMETRY, from, to), 0, 'ODOMETRY still arriving');
+    assert.ok(rate(receiver.arrivals, HEARTBEAT, from, to) > 0, 'HEARTBEAT stopped too');
+
+    // Ticking it again brings it back.
+    await card.locator('.v-messages input[value="odometry"]').check();
+    await sleep(300);
+    assert.ok(await measure(receiver, ODOMETRY, 1000) > 10);
+  });
+
+  test('phone width has no horizontal overflow; screenshot', async () => {
+    await page.setViewportSize({ width: 375, height: 800 });
+    await sleep(300);
+    const o = await horizontalOverflow(page);
+    assert.equal(o.scrollWidth, o.width, JSON.stringify(o));
+    await page.screenshot({ path: path.join(artifacts, 'dashboard-run-375.png'), fullPage: true });
+    await page.setViewportSize({ width: 1280, height: 900 });
+    await sleep(1500);
+    await page.screenshot({ path: path.join(artifacts, 'dashboard-run.png'), fullPage: true });
+    assert.deepEqual(browser.errors, []);
+  });
+});
