@@ -291,6 +291,7 @@ int Daemon::run() {
   for (std::size_t i = 0; i < vehicles_.size(); ++i) {
     summary_.describe_vehicle(settings_.config.vehicles[i], *vehicles_[i].link);
   }
+  summary_.begin(io::host_now());
   start_source();
   every(tick_timer_, kTickPeriod, [this] { dispatch(bridge_.on_tick(io::host_now())); });
   every(flush_timer_, kFlushPeriod, [this] {

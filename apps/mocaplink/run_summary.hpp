@@ -28,6 +28,8 @@ class Summary {
   /// The start-up line of one vehicle.
   void describe_vehicle(const config::Vehicle& vehicle, const io::Link& link) const;
   void on_frames(std::size_t frames) { frames_ += frames; }
+  /// Marks when counting starts, so the first summary's rates divide by the time actually elapsed.
+  void begin(core::HostTime now) { previous_time_ = now; }
   /// Logs a core event, at most one per (kind, subject) per second; the rest are counted and
   /// mentioned with the next one logged.
   void on_event(const core::BridgeEvent& event, core::HostTime now);
