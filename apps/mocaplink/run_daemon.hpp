@@ -21,7 +21,7 @@ struct DaemonSettings {
   std::optional<std::filesystem::path> record_dir;  ///< --record DIR
   std::filesystem::path state_dir;                  ///< signing timestamps (io::SigningStore)
   std::chrono::milliseconds summary_period{std::chrono::seconds(10)};
-  bool http_requested = false;  ///< --http given (the dashboard is not built in yet)
+  bool http_requested = false;  ///< --http given on the command line
 };
 
 /// Runs until SIGINT/SIGTERM (or the source finishes) and returns the exit code. Logs go to the
