@@ -25,6 +25,7 @@
 
 #include "commands.hpp"
 #include "mocaplink/sources/sim_world.hpp"
+#include "mocaplink/sources/source_factory.hpp"
 #include "mocaplink/sources/vicon_server.hpp"
 #if __has_include("mocaplink/sources/replay_source.hpp")
 #include "mocaplink/sources/replay_source.hpp"
@@ -41,18 +42,14 @@ struct ServeArgs {
   double rate_hz = 100.0;
 };
 
-sources::UrlQuery split_query(std::string_view query) {
-  sources::UrlQuery out;
-  while (!query.empty()) {
-    const auto amp = query.find('&');
-    const std::string_view pair = query.substr(0, amp);
-    query = amp == std::string_view::npos ? std::string_view{} : query.substr(amp + 1);
-    if (pair.empty()) continue;
-    const auto eq = pair.find('=');
-    out.emplace_back(std::string(pair.substr(0, eq)),
-                     eq == std::string_view::npos ? "" : std::string(pair.substr(eq + 1)));
+// `--from sim`, `sim://?…`, `replay:FILE` or `replay://FILE` → the source URL grammar every other
+// command uses (sources::parse_source_url), so the query rules are the same everywhere.
+std::variant<sources::SourceUrl, std::string> parse_from(const std::string& from) {
+  if (from == "sim") return sources::parse_source_url("sim://");
+  if (from.starts_with("replay:") && !from.starts_with("replay://")) {
+    return sources::parse_source_url("replay://" + from.substr(7));
   }
-  return out;
+  return sources::parse_source_url(from);
 }
 
 // "HOST:PORT", ":PORT", "HOST", "[V6]:PORT" → host, port. nullopt on a bad port.
@@ -115,10 +112,16 @@ int run_serve(const ServeArgs& args) {
 #ifdef MOCAPLINK_SERVE_HAS_REPLAY
   std::unique_ptr<sources::ReplaySource> replay;
 #endif
-  if (args.from == "sim" || args.from.starts_with("sim://")) {
-    const auto q = args.from.find('?');
-    auto config = sources::sim_config_from_query(split_query(
-        q == std::string::npos ? std::string_view{} : std::string_view(args.from).substr(q + 1)));
+  const auto from_url = parse_from(args.from);
+  if (const auto* err = std::get_if<std::string>(&from_url)) {
+    std::fprintf(
+        stderr, "mocaplink serve: bad --from '%s' (expected sim, sim://?KEYS or replay:FILE): %s\n",
+        args.from.c_str(), err->c_str());
+    return 1;
+  }
+  const auto& source = std::get<sources::SourceUrl>(from_url);
+  if (source.scheme == "sim") {
+    auto config = sources::sim_config_from_query(source.query);
     if (const auto* err = std::get_if<std::string>(&config)) {
       std::fprintf(stderr, "mocaplink serve: --from %s: %s\n", args.from.c_str(), err->c_str());
       return 1;
@@ -130,13 +133,9 @@ int run_serve(const ServeArgs& args) {
       return 1;
     }
     world = std::make_unique<sources::SimWorld>(sim);
-  } else if (args.from.starts_with("replay:")) {
+  } else if (source.scheme == "replay") {
 #ifdef MOCAPLINK_SERVE_HAS_REPLAY
-    std::string rest = args.from.substr(args.from.starts_with("replay://") ? 9 : 7);
-    const auto q = rest.find('?');
-    const auto query = split_query(q == std::string::npos ? std::string_view{}
-                                                          : std::string_view(rest).substr(q + 1));
-    auto config = sources::replay_config_from_url(rest.substr(0, q), query);
+    auto config = sources::replay_config_from_url(source.rest, source.query);
     if (const auto* err = std::get_if<std::string>(&config)) {
       std::fprintf(stderr, "mocaplink serve: --from %s: %s\n", args.from.c_str(), err->c_str());
       return 1;
