@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <utility>
 
 #include "mocaplink/mavlink/signing.hpp"
@@ -13,29 +12,6 @@ namespace {
 
 std::string vehicle_field(std::size_t index, std::string_view key) {
   return "vehicles[" + std::to_string(index) + "]." + std::string(key);
-}
-
-std::optional<BridgeConfigError> validate_vehicle(const BridgeConfig& config, std::size_t i) {
-  const VehicleSpec& v = config.vehicles[i];
-  if (v.name.empty()) return BridgeConfigError{vehicle_field(i, "name"), "must not be empty"};
-  if (v.body.empty()) return BridgeConfigError{vehicle_field(i, "body"), "must not be empty"};
-  if (v.system_id == 0) return BridgeConfigError{vehicle_field(i, "system_id"), "must be 1..255"};
-  if (v.component_id <= 1) {
-    return BridgeConfigError{vehicle_field(i, "component_id"),
-                             "must be 2..255 (1 is the autopilot itself)"};
-  }
-  if (!(std::isfinite(v.rate_hz) && v.rate_hz > 0.0 && v.rate_hz <= kMaxSenderRateHz)) {
-    return BridgeConfigError{vehicle_field(i, "rate_hz"), "must be in (0, 500]"};
-  }
-  if (v.profile == Profile::custom && v.messages.empty()) {
-    return BridgeConfigError{vehicle_field(i, "messages"), "profile custom needs messages"};
-  }
-  if (messages_for(v.profile, v.messages).needs_origin() && !config.origin) {
-    return BridgeConfigError{"origin", "vehicle '" + v.name + "' sends " +
-                                           std::string(to_string(v.profile)) +
-                                           " messages, which need [origin]"};
-  }
-  return std::nullopt;
 }
 
 }  // namespace
@@ -73,15 +49,45 @@ std::variant<Bridge, BridgeConfigError> Bridge::make(const BridgeConfig& config,
   if (config.origin && !LocalGeodeticFrame::make(*config.origin)) {
     return BridgeConfigError{"origin", "latitude/longitude/altitude out of range or not finite"};
   }
-  std::set<std::string> names;
-  for (std::size_t i = 0; i < config.vehicles.size(); ++i) {
-    if (auto error = validate_vehicle(config, i)) return *error;
-    if (!names.insert(config.vehicles[i].name).second) {
-      return BridgeConfigError{vehicle_field(i, "name"),
-                               "duplicate vehicle name '" + config.vehicles[i].name + "'"};
-    }
+  // Checked one by one against the ones before, exactly as add_vehicle() would.
+  BridgeConfig empty = config;
+  empty.vehicles.clear();
+  Bridge bridge(empty, start);
+  for (const VehicleSpec& spec : config.vehicles) {
+    auto added = bridge.add_vehicle(spec);
+    if (auto* error = std::get_if<BridgeConfigError>(&added)) return std::move(*error);
   }
-  return Bridge(config, start);
+  bridge.config_.vehicles = config.vehicles;
+  return bridge;
+}
+
+std::optional<BridgeConfigError> Bridge::validate_vehicle(const VehicleSpec& v,
+                                                          std::size_t slot) const {
+  if (v.name.empty()) return BridgeConfigError{vehicle_field(slot, "name"), "must not be empty"};
+  if (find_vehicle(v.name)) {
+    return BridgeConfigError{vehicle_field(slot, "name"),
+                             "duplicate vehicle name '" + v.name + "'"};
+  }
+  if (v.body.empty()) return BridgeConfigError{vehicle_field(slot, "body"), "must not be empty"};
+  if (v.system_id == 0) {
+    return BridgeConfigError{vehicle_field(slot, "system_id"), "must be 1..255"};
+  }
+  if (v.component_id <= 1) {
+    return BridgeConfigError{vehicle_field(slot, "component_id"),
+                             "must be 2..255 (1 is the autopilot itself)"};
+  }
+  if (!(std::isfinite(v.rate_hz) && v.rate_hz > 0.0 && v.rate_hz <= kMaxSenderRateHz)) {
+    return BridgeConfigError{vehicle_field(slot, "rate_hz"), "must be in (0, 500]"};
+  }
+  if (v.profile == Profile::custom && v.messages.empty()) {
+    return BridgeConfigError{vehicle_field(slot, "messages"), "profile custom needs messages"};
+  }
+  if (messages_for(v.profile, v.messages).needs_origin() && !config_.origin) {
+    return BridgeConfigError{"origin", "vehicle '" + v.name + "' sends " +
+                                           std::string(to_string(v.profile)) +
+                                           " messages, which need [origin]"};
+  }
+  return std::nullopt;
 }
 
 Bridge::Bridge(const BridgeConfig& config, HostTime start)
@@ -90,35 +96,81 @@ Bridge::Bridge(const BridgeConfig& config, HostTime start)
       station_(config.station),
       capture_mapper_(config.capture_time) {
   if (config.origin) geodetic_ = LocalGeodeticFrame::make(*config.origin);
-  for (std::size_t i = 0; i < config.vehicles.size(); ++i) {
-    const VehicleSpec& spec = config.vehicles[i];
-    // One Tracker per distinct (body, body axes): vehicles following the same body share it.
-    auto same = [&](const Body& b) {
-      return b.name == spec.body && b.axes.r_body_frd().isApprox(spec.body_axes.r_body_frd());
-    };
-    auto it = std::find_if(bodies_.begin(), bodies_.end(), same);
-    if (it == bodies_.end()) {
-      bodies_.push_back(Body{spec.body, spec.body_axes,
-                             Tracker(config.tracking, AxisMapping(config.world, spec.body_axes)),
-                             TrackingState::unseen, 0, 0, BodyEstimate{}});
-      it = std::prev(bodies_.end());
-    }
-    SenderConfig sc;
-    sc.vehicle = i;
-    sc.system_id = spec.system_id;
-    sc.component_id = spec.component_id;
-    sc.messages = messages_for(spec.profile, spec.messages);
-    sc.rate_hz = spec.rate_hz;
-    sc.signing_key = spec.signing_key;
-    sc.signing_link_id = spec.signing_link_id;
-    const bool origin = config.origin.has_value() && sends_origin(spec.profile, sc.messages);
-    VehicleStateConfig vc;
-    vc.system_id = spec.system_id;
-    if (origin) vc.origin = config.origin;
-    vc.agreement = config.agreement;
-    vehicles_.push_back(Vehicle{spec, static_cast<std::size_t>(it - bodies_.begin()), Sender(sc),
-                                VehicleState(vc), origin});
+}
+
+void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
+  // One Tracker per distinct (body, body axes): vehicles following the same body share it.
+  auto same = [&](const Body& b) {
+    return b.name == spec.body && b.axes.r_body_frd().isApprox(spec.body_axes.r_body_frd());
+  };
+  auto it = std::find_if(bodies_.begin(), bodies_.end(), same);
+  if (it == bodies_.end()) {
+    bodies_.push_back(Body{spec.body, spec.body_axes,
+                           Tracker(config_.tracking, AxisMapping(config_.world, spec.body_axes)),
+                           TrackingState::unseen, 0, 0, BodyEstimate{}});
+    it = std::prev(bodies_.end());
   }
+  SenderConfig sc;
+  sc.vehicle = slot;
+  sc.system_id = spec.system_id;
+  sc.component_id = spec.component_id;
+  sc.messages = messages_for(spec.profile, spec.messages);
+  sc.rate_hz = spec.rate_hz;
+  sc.signing_key = spec.signing_key;
+  sc.signing_link_id = spec.signing_link_id;
+  const bool origin = config_.origin.has_value() && sends_origin(spec.profile, sc.messages);
+  VehicleStateConfig vc;
+  vc.system_id = spec.system_id;
+  if (origin) vc.origin = config_.origin;
+  vc.agreement = config_.agreement;
+  Vehicle vehicle{spec, static_cast<std::size_t>(it - bodies_.begin()), Sender(sc),
+                  VehicleState(vc), origin};
+  if (slot == vehicles_.size()) {
+    vehicles_.emplace_back(std::move(vehicle));
+  } else {
+    vehicles_[slot].emplace(std::move(vehicle));
+  }
+}
+
+std::variant<std::size_t, BridgeConfigError> Bridge::add_vehicle(const VehicleSpec& spec) {
+  const auto empty = std::find_if(vehicles_.begin(), vehicles_.end(),
+                                  [](const std::optional<Vehicle>& v) { return !v.has_value(); });
+  const auto slot = static_cast<std::size_t>(empty - vehicles_.begin());
+  if (auto error = validate_vehicle(spec, slot)) return std::move(*error);
+  place_vehicle(spec, slot);
+  return slot;
+}
+
+bool Bridge::remove_vehicle(std::size_t slot) {
+  if (live(slot) == nullptr) return false;
+  const std::size_t body = vehicles_[slot]->body;
+  vehicles_[slot].reset();
+  while (!vehicles_.empty() && !vehicles_.back()) vehicles_.pop_back();
+  const bool followed = std::any_of(vehicles_.begin(), vehicles_.end(),
+                                    [&](const auto& v) { return v && v->body == body; });
+  if (followed) return true;
+  bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(body));
+  for (auto& v : vehicles_) {
+    if (v && v->body > body) --v->body;
+  }
+  return true;
+}
+
+std::optional<std::size_t> Bridge::find_vehicle(std::string_view name) const {
+  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+    if (vehicles_[i] && vehicles_[i]->spec.name == name) return i;
+  }
+  return std::nullopt;
+}
+
+std::size_t Bridge::vehicle_count() const {
+  return static_cast<std::size_t>(std::count_if(vehicles_.begin(), vehicles_.end(),
+                                                [](const auto& v) { return v.has_value(); }));
+}
+
+Bridge::Vehicle* Bridge::live(std::size_t slot) {
+  if (slot >= vehicles_.size() || !vehicles_[slot]) return nullptr;
+  return &*vehicles_[slot];
 }
 
 std::optional<GpsTime> Bridge::gps_time(HostTime t) const {
@@ -205,16 +257,16 @@ BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
   context.gps = config_.gps;
   context.gps_time = gps_time(capture);
   context.signing_now_10us = signing_now_10us(received);
-  for (Vehicle& v : vehicles_) {
-    if (!v.spec.enabled) continue;
-    v.sender.on_estimate(bodies_[v.body].published, context, out.messages);
+  for (auto& v : vehicles_) {
+    if (!v || !v->spec.enabled) continue;
+    v->sender.on_estimate(bodies_[v->body].published, context, out.messages);
   }
   return out;
 }
 
 void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,
                             BridgeOutput& out) const {
-  const Vehicle& v = vehicles_[index];
+  const Vehicle& v = *vehicles_[index];
   if (reaction.link_changed) {
     out.events.push_back({BridgeEventKind::vehicle_link, now, index, v.spec.name,
                           "link " + std::string(to_string(v.state.link_state()))});
@@ -242,8 +294,9 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
 BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
                                         HostTime received) {
   BridgeOutput out;
-  if (vehicle >= vehicles_.size()) return out;
-  Vehicle& v = vehicles_[vehicle];
+  Vehicle* found = live(vehicle);
+  if (found == nullptr) return out;
+  Vehicle& v = *found;
   const VehicleReaction reaction =
       v.state.on_message(message, received, &bodies_[v.body].published);
   if (reaction.timesync_reply && v.spec.enabled) {
@@ -256,7 +309,8 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
 BridgeOutput Bridge::on_tick(HostTime now) {
   BridgeOutput out;
   for (std::size_t i = 0; i < vehicles_.size(); ++i) {
-    Vehicle& v = vehicles_[i];
+    if (!vehicles_[i]) continue;
+    Vehicle& v = *vehicles_[i];
     VehicleReaction reaction;
     reaction.link_changed = v.state.on_tick(now);
     vehicle_events(i, reaction, now, out);
@@ -274,20 +328,22 @@ BridgeOutput Bridge::on_tick(HostTime now) {
 }
 
 bool Bridge::set_rate_hz(std::size_t vehicle, double rate_hz) {
-  if (vehicle >= vehicles_.size()) return false;
-  return vehicles_[vehicle].sender.set_rate_hz(rate_hz);
+  Vehicle* v = live(vehicle);
+  return v != nullptr && v->sender.set_rate_hz(rate_hz);
 }
 
 bool Bridge::set_messages(std::size_t vehicle, const MessageSet& messages) {
-  if (vehicle >= vehicles_.size()) return false;
+  Vehicle* v = live(vehicle);
+  if (v == nullptr) return false;
   if (messages.needs_origin() && !geodetic_) return false;
-  vehicles_[vehicle].sender.set_messages(messages);
+  v->sender.set_messages(messages);
   return true;
 }
 
 bool Bridge::set_paused(std::size_t vehicle, bool paused) {
-  if (vehicle >= vehicles_.size()) return false;
-  vehicles_[vehicle].sender.set_paused(paused);
+  Vehicle* v = live(vehicle);
+  if (v == nullptr) return false;
+  v->sender.set_paused(paused);
   return true;
 }
 
@@ -301,8 +357,10 @@ BridgeSnapshot Bridge::snapshot(HostTime now) const {
   for (const Body& b : bodies_) s.bodies.push_back({b.name, b.published});
   s.source_restarts = source_restarts_;
   s.vehicles.reserve(vehicles_.size());
-  for (const Vehicle& v : vehicles_) {
-    s.vehicles.push_back({v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled,
+  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+    if (!vehicles_[i]) continue;
+    const Vehicle& v = *vehicles_[i];
+    s.vehicles.push_back({i, v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled,
                           v.sender.snapshot(), v.state.snapshot()});
   }
   return s;

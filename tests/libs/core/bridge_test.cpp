@@ -1,10 +1,13 @@
 // Bridge: config validation, the step functions end to end with injected time (frames → poses,
 // loss → no pose / GPS fix 0, vehicle messages → TIMESYNC replies and origin confirmation, ticks →
-// heartbeats), capture-time mapping, runtime control and the snapshot.
+// heartbeats), capture-time mapping, runtime control, vehicles added and removed at run time and
+// the snapshot.
 #include "mocaplink/core/bridge.hpp"
 
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -311,6 +314,122 @@ TEST(BridgeControl, RateMessagesPauseDisableAndWallClock) {
   EXPECT_FALSE(s.vehicles[2].enabled);
   EXPECT_EQ(s.bodies.size(), 2U);  // "spare" shares the Quad tracker
   EXPECT_EQ(s.station.frames, 101U);
+}
+
+TEST(BridgeRuntimeVehicles, AddedVehicleGetsPosesAndHeartbeatsInItsOwnSlot) {
+  Bridge bridge = make_bridge(two_vehicles());
+  for (std::uint64_t n = 1; n <= 50; ++n)
+    (void)bridge.on_frame(frame_at(n, true, true), received_at(n));
+  // A third vehicle on the tracked Quad body, and a fourth on a body nobody followed before.
+  VehicleSpec spare = vehicle("spare", "Quad", Profile::px4, 3);
+  spare.rate_hz = 25.0;
+  auto added = bridge.add_vehicle(spare);
+  ASSERT_TRUE(std::holds_alternative<std::size_t>(added));
+  EXPECT_EQ(std::get<std::size_t>(added), 2U);
+  auto other = bridge.add_vehicle(vehicle("other", "Other", Profile::px4, 4));
+  ASSERT_TRUE(std::holds_alternative<std::size_t>(other));
+  EXPECT_EQ(std::get<std::size_t>(other), 3U);
+  EXPECT_EQ(bridge.vehicle_count(), 4U);
+  EXPECT_EQ(bridge.find_vehicle("spare"), std::optional<std::size_t>(2));
+
+  std::map<std::size_t, std::size_t> odometry;  // per slot
+  for (std::uint64_t n = 51; n <= 150; ++n) {
+    for (const auto& [slot, odo] :
+         of_type<mavlink::Odometry>(bridge.on_frame(frame_at(n, true, true), received_at(n)))) {
+      ++odometry[slot];
+      if (slot == 2) {
+        EXPECT_NEAR(odo.x, 1.0F, 1e-5F);  // the Quad's pose, already converged
+      }
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(odometry[0]), 50.0, 1.0);
+  EXPECT_NEAR(static_cast<double>(odometry[2]), 25.0, 1.0);  // its own rate, from the next frame
+  EXPECT_EQ(odometry.count(3), 0U);  // "Other" is never in a frame: nothing but heartbeats
+  std::set<std::size_t> heartbeats;
+  for (const auto& [slot, hb] : of_type<mavlink::Heartbeat>(bridge.on_tick(received_at(151)))) {
+    heartbeats.insert(slot);
+  }
+  EXPECT_EQ(heartbeats, (std::set<std::size_t>{0, 1, 2, 3}));
+  const auto s = bridge.snapshot(received_at(151));
+  ASSERT_EQ(s.vehicles.size(), 4U);
+  EXPECT_EQ(s.vehicles[3].index, 3U);
+  EXPECT_EQ(s.vehicles[3].name, "other");
+  EXPECT_EQ(s.bodies.size(), 3U);  // Quad (shared), Rover, Other
+}
+
+TEST(BridgeRuntimeVehicles, AddIsCheckedLikeMake) {
+  BridgeConfig c = two_vehicles();
+  c.origin.reset();
+  c.vehicles.pop_back();  // the ardupilot-gps rover needs an origin
+  Bridge bridge = make_bridge(c);
+  auto refused = [&](const VehicleSpec& spec, const std::string& field) {
+    auto added = bridge.add_vehicle(spec);
+    ASSERT_TRUE(std::holds_alternative<BridgeConfigError>(added)) << field;
+    EXPECT_EQ(std::get<BridgeConfigError>(added).field, field);
+  };
+  refused(vehicle("quad", "Other", Profile::px4, 2), "vehicles[1].name");
+  refused(vehicle("gps", "Other", Profile::px4_gps, 2), "origin");
+  VehicleSpec fast = vehicle("fast", "Other", Profile::px4, 2);
+  fast.rate_hz = 501.0;
+  refused(fast, "vehicles[1].rate_hz");
+  refused(vehicle("", "Other", Profile::px4, 2), "vehicles[1].name");
+  EXPECT_EQ(bridge.vehicle_count(), 1U);  // nothing half-added
+  EXPECT_EQ(bridge.snapshot(HostTime{}).bodies.size(), 1U);
+}
+
+TEST(BridgeRuntimeVehicles, RemovedVehicleGetsNothingAndItsSlotIsReused) {
+  Bridge bridge = make_bridge(two_vehicles());
+  for (std::uint64_t n = 1; n <= 20; ++n)
+    (void)bridge.on_frame(frame_at(n, true, true), received_at(n));
+  EXPECT_FALSE(bridge.remove_vehicle(7));
+  ASSERT_TRUE(bridge.remove_vehicle(0));
+  EXPECT_FALSE(bridge.remove_vehicle(0));  // already gone
+  EXPECT_FALSE(bridge.find_vehicle("quad"));
+  EXPECT_FALSE(bridge.set_rate_hz(0, 10.0));
+  EXPECT_FALSE(bridge.set_paused(0, true));
+  for (std::uint64_t n = 21; n <= 120; ++n) {
+    const BridgeOutput out = bridge.on_frame(frame_at(n, true, true), received_at(n));
+    for (const auto& m : out.messages) EXPECT_EQ(m.vehicle, 1U);
+  }
+  for (const auto& m : bridge.on_tick(received_at(121)).messages) EXPECT_EQ(m.vehicle, 1U);
+  // A vehicle message for the empty slot is ignored (its link may still deliver a late frame).
+  ReceivedMessage timesync{1, 1, mavlink::Timesync{0, 5, 0, 0}};
+  EXPECT_TRUE(bridge.on_vehicle_message(0, timesync, received_at(121)).messages.empty());
+  auto s = bridge.snapshot(received_at(121));
+  ASSERT_EQ(s.vehicles.size(), 1U);
+  EXPECT_EQ(s.vehicles[0].index, 1U);
+  EXPECT_EQ(s.vehicles[0].name, "rover");
+  ASSERT_EQ(s.bodies.size(), 1U);  // nobody follows Quad any more: its tracker is gone
+  EXPECT_EQ(s.bodies[0].name, "Rover");
+
+  // The name is free again; the lowest empty slot is reused, and the Quad is tracked anew.
+  auto again = bridge.add_vehicle(vehicle("quad", "Quad", Profile::px4, 1));
+  ASSERT_TRUE(std::holds_alternative<std::size_t>(again));
+  EXPECT_EQ(std::get<std::size_t>(again), 0U);
+  std::size_t odometry = 0;
+  for (std::uint64_t n = 122; n <= 221; ++n) {
+    for (const auto& [slot, odo] :
+         of_type<mavlink::Odometry>(bridge.on_frame(frame_at(n, true, true), received_at(n)))) {
+      EXPECT_EQ(slot, 0U);
+      ++odometry;
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(odometry), 50.0, 2.0);
+  s = bridge.snapshot(received_at(221));
+  ASSERT_EQ(s.bodies.size(), 2U);
+  // The rover follows a body that moved index when the Quad's tracker went: still its own pose.
+  EXPECT_EQ(s.vehicles[1].body, "Rover");
+  EXPECT_EQ(s.bodies[0].name, "Rover");
+  EXPECT_NEAR(s.bodies[0].estimate.p_ned_m.x(), -1.0, 1e-6);
+
+  // Removing the highest slot shrinks the table: repeated add/remove stays bounded.
+  for (int i = 0; i < 1000; ++i) {
+    auto slot = bridge.add_vehicle(vehicle("churn", "Churn" + std::to_string(i), Profile::px4, 9));
+    ASSERT_TRUE(std::holds_alternative<std::size_t>(slot));
+    ASSERT_TRUE(bridge.remove_vehicle(std::get<std::size_t>(slot)));
+  }
+  EXPECT_EQ(bridge.slot_count(), 2U);
+  EXPECT_EQ(bridge.snapshot(received_at(221)).bodies.size(), 2U);
 }
 
 TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {

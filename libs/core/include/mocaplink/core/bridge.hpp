@@ -22,6 +22,11 @@
 // Per frame: every tracker gets its body's sample (on_sample), or on_missing when the body is not
 // in the frame; then each enabled vehicle's Sender sees its body's estimate. Vehicles whose body
 // is never seen send nothing but heartbeats (and GPS fix 0 only once the body was seen).
+// Vehicles can be added and removed while the bridge runs (the dashboard). A vehicle is named by
+// its slot index: the index it had in config.vehicles, or the one add_vehicle() returned. Slots
+// never move; remove_vehicle() empties one and the next add_vehicle() reuses the lowest empty
+// slot, so an adapter can keep per-vehicle state (links, files) in a vector indexed the same way.
+// A body's Tracker lives while some vehicle follows it; removing the last such vehicle drops it.
 // Thread-safety: not thread-safe; snapshot() returns an independent copy.
 #pragma once
 
@@ -30,6 +35,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -122,6 +128,7 @@ struct BodySnapshot {
 
 /// One vehicle on the dashboard.
 struct VehicleStatus {
+  std::size_t index = 0;  ///< the vehicle's slot (Bridge, "Vehicles can be added")
   std::string name;
   std::string body;
   Profile profile = Profile::px4;
@@ -135,7 +142,7 @@ struct BridgeSnapshot {
   HostTime time{};
   StationSnapshot station;
   std::vector<BodySnapshot> bodies;
-  std::vector<VehicleStatus> vehicles;
+  std::vector<VehicleStatus> vehicles;  ///< the live vehicles, by slot
   std::optional<GeodeticPosition> origin;
   std::optional<Duration> capture_offset;  ///< host − source clock offset (CaptureTimeMapper)
   std::uint64_t source_restarts = 0;       ///< frames whose capture time went backwards
@@ -151,7 +158,7 @@ class Bridge {
 
   /// A mocap frame received at `received`.
   BridgeOutput on_frame(const MocapFrame& frame, HostTime received);
-  /// A decoded message from vehicle `vehicle`'s link (index into config.vehicles; out of range is
+  /// A decoded message from vehicle `vehicle`'s link (its slot; an empty or out-of-range slot is
   /// ignored).
   BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
                                   HostTime received);
@@ -164,13 +171,30 @@ class Bridge {
   /// last call wins; GPS time then follows the steady clock, so it never jumps with NTP).
   void set_wall_clock(HostTime host, std::int64_t unix_us);
 
-  // Runtime control (dashboard). Out-of-range vehicle index or value → false, nothing changes.
+  // Runtime control (dashboard). Empty or out-of-range slot, or a bad value → false, nothing
+  // changes.
   bool set_rate_hz(std::size_t vehicle, double rate_hz);
   bool set_messages(std::size_t vehicle, const MessageSet& messages);
   bool set_paused(std::size_t vehicle, bool paused);
 
+  /// Adds a vehicle, checked as make() checks config.vehicles (the error's field reads
+  /// "vehicles[SLOT]..."; a name in use is refused with field "vehicles[SLOT].name"). Returns its
+  /// slot. It starts like a configured one: heartbeats from the next on_tick, poses from the next
+  /// frame in which its body has an estimate (a body no other vehicle follows is tracked from
+  /// then on).
+  [[nodiscard]] std::variant<std::size_t, BridgeConfigError> add_vehicle(const VehicleSpec& spec);
+  /// Removes the vehicle in `slot`: nothing more is sent to it or accepted from it. False when the
+  /// slot is empty or out of range.
+  bool remove_vehicle(std::size_t slot);
+  /// The slot of the live vehicle named `name`.
+  [[nodiscard]] std::optional<std::size_t> find_vehicle(std::string_view name) const;
+
   [[nodiscard]] BridgeSnapshot snapshot(HostTime now) const;
-  [[nodiscard]] std::size_t vehicle_count() const { return vehicles_.size(); }
+  /// Live vehicles.
+  [[nodiscard]] std::size_t vehicle_count() const;
+  /// One past the highest slot ever used (live or empty).
+  [[nodiscard]] std::size_t slot_count() const { return vehicles_.size(); }
+  /// The configuration make() was given (its vehicles are the ones at start).
   [[nodiscard]] const BridgeConfig& config() const { return config_; }
 
  private:
@@ -194,6 +218,12 @@ class Bridge {
   };
   Bridge(const BridgeConfig& config, HostTime start);
 
+  [[nodiscard]] std::optional<BridgeConfigError> validate_vehicle(const VehicleSpec& spec,
+                                                                  std::size_t slot) const;
+  /// Builds the vehicle in `slot` (== vehicles_.size() appends), sharing or creating its Body.
+  void place_vehicle(const VehicleSpec& spec, std::size_t slot);
+  [[nodiscard]] Vehicle* live(std::size_t slot);
+
   void track(const MocapFrame& frame, HostTime capture, BridgeOutput& out);
   [[nodiscard]] std::optional<GpsTime> gps_time(HostTime t) const;
   [[nodiscard]] std::uint64_t signing_now_10us(HostTime t) const;
@@ -206,7 +236,7 @@ class Bridge {
   CaptureTimeMapper capture_mapper_;
   std::optional<LocalGeodeticFrame> geodetic_;
   std::vector<Body> bodies_;
-  std::vector<Vehicle> vehicles_;
+  std::vector<std::optional<Vehicle>> vehicles_;  // by slot; std::nullopt: removed
   std::optional<Duration> unix_minus_host_;
   std::optional<SourceTime> last_capture_;
   std::uint64_t source_restarts_ = 0;
