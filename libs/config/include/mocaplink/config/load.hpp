@@ -3,9 +3,11 @@
 // reentrant and thread-safe (no shared state); none throws for bad input.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "mocaplink/config/config.hpp"
@@ -49,5 +51,22 @@ ConfigResult load_config(std::string_view toml_text, std::string_view filename,
 /// given). Cross-checks that involve base vehicles name them as coming from `base_name`.
 ConfigResult apply_overrides(const Config& base, const CommandLineOverrides& overrides,
                              std::string_view base_name = "built-in demo");
+
+/// One key of a [[vehicle]] table as a typed value, the way a JSON object gives it (the dashboard's
+/// POST /api/vehicles). An integer is accepted where a number is expected.
+struct VehicleKey {
+  using Value = std::variant<std::string, std::int64_t, double, bool, std::vector<std::string>>;
+  std::string key;
+  Value value;
+};
+
+/// Adds one vehicle to a valid Config, with exactly the checks a [[vehicle]] table gets: keys and
+/// their values, required keys, defaults from [mocap], the origin the profile needs, a name not in
+/// use and a system id not in use on the same link. On success the new Config's last vehicle is
+/// the added one; warnings (a shared link) come with it. Errors and warnings are located at
+/// `origin` (line 0) and their key is the bare [[vehicle]] key ("system_id"), or "" when the
+/// problem is not one key.
+ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
+                         std::string_view origin);
 
 }  // namespace mocaplink::config

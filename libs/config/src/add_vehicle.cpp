@@ -1,0 +1,123 @@
+// add_vehicle (load.hpp): one [[vehicle]] from typed key/value pairs, checked against a running
+// Config by the same key handlers and cross-checks as a file.
+#include <algorithm>
+#include <string>
+
+#include "draft.hpp"
+#include "mocaplink/config/load.hpp"
+
+namespace mocaplink::config {
+namespace {
+
+const char* type_name(const VehicleKey& key) {
+  switch (key.value.index()) {
+    case 0:
+      return "a string";
+    case 1:
+      return "an integer";
+    case 2:
+      return "a number";
+    case 3:
+      return "a boolean";
+    default:
+      return "a list of strings";
+  }
+}
+
+/// The value converted to the key's declared type, or std::nullopt when it has another type.
+std::optional<detail::Value> typed(const VehicleKey& key, detail::ValueType type,
+                                   const detail::Where& where) {
+  detail::Value value;
+  value.where = where;
+  value.key = key.key;
+  const auto* integer = std::get_if<std::int64_t>(&key.value);
+  switch (type) {
+    case detail::ValueType::string:
+      if (!std::holds_alternative<std::string>(key.value)) return std::nullopt;
+      value.data = std::get<std::string>(key.value);
+      return value;
+    case detail::ValueType::integer:
+      if (integer == nullptr) return std::nullopt;
+      value.data = *integer;
+      return value;
+    case detail::ValueType::number:
+      if (integer != nullptr) {
+        value.data = static_cast<double>(*integer);
+      } else if (const auto* number = std::get_if<double>(&key.value)) {
+        value.data = *number;
+      } else {
+        return std::nullopt;
+      }
+      return value;
+    case detail::ValueType::boolean:
+      if (!std::holds_alternative<bool>(key.value)) return std::nullopt;
+      value.data = std::get<bool>(key.value);
+      return value;
+    case detail::ValueType::string_list:
+      if (!std::holds_alternative<std::vector<std::string>>(key.value)) return std::nullopt;
+      value.data = std::get<std::vector<std::string>>(key.value);
+      return value;
+  }
+  return std::nullopt;
+}
+
+const char* expected_name(detail::ValueType type) {
+  switch (type) {
+    case detail::ValueType::string:
+      return "a string";
+    case detail::ValueType::integer:
+      return "an integer";
+    case detail::ValueType::number:
+      return "a number";
+    case detail::ValueType::boolean:
+      return "true or false";
+    case detail::ValueType::string_list:
+      return "a list of strings";
+  }
+  return "?";
+}
+
+}  // namespace
+
+ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
+                         std::string_view origin) {
+  detail::ConfigDraft draft = detail::draft_from_config(base, "configuration");
+  detail::Diagnostics diagnostics;
+  const detail::Where where{std::string(origin)};
+  detail::VehicleDraft vehicle;
+  vehicle.header = where;
+  const auto specs = detail::vehicle_keys();
+  std::vector<std::string_view> names;
+  for (const auto& s : specs) names.push_back(s.name);
+  std::vector<std::string_view> seen;
+  for (const VehicleKey& key : keys) {
+    const auto spec =
+        std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == key.key; });
+    if (spec == specs.end()) {
+      diagnostics.error(where, key.key, detail::unknown_key_message(key.key, names));
+      continue;
+    }
+    if (std::find(seen.begin(), seen.end(), spec->name) != seen.end()) {
+      diagnostics.error(where, key.key, "given twice");
+      continue;
+    }
+    seen.push_back(spec->name);
+    if (auto value = typed(key, spec->type, where)) {
+      spec->apply(vehicle, *value, diagnostics);
+    } else {
+      diagnostics.error(
+          where, key.key,
+          std::string("expected ") + expected_name(spec->type) + ", got " + type_name(key));
+      vehicle.mistyped.push_back(key.key);
+    }
+  }
+  draft.vehicles.push_back(std::move(vehicle));
+  ConfigResult result;
+  result.config = detail::finalize(draft, diagnostics);
+  result.errors = std::move(diagnostics.errors);
+  result.warnings = std::move(diagnostics.warnings);
+  if (!result.errors.empty()) result.config.reset();
+  return result;
+}
+
+}  // namespace mocaplink::config
