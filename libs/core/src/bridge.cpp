@@ -132,10 +132,14 @@ void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
   }
 }
 
-std::variant<std::size_t, BridgeConfigError> Bridge::add_vehicle(const VehicleSpec& spec) {
+std::size_t Bridge::next_slot() const {
   const auto empty = std::find_if(vehicles_.begin(), vehicles_.end(),
                                   [](const std::optional<Vehicle>& v) { return !v.has_value(); });
-  const auto slot = static_cast<std::size_t>(empty - vehicles_.begin());
+  return static_cast<std::size_t>(empty - vehicles_.begin());
+}
+
+std::variant<std::size_t, BridgeConfigError> Bridge::add_vehicle(const VehicleSpec& spec) {
+  const std::size_t slot = next_slot();
   if (auto error = validate_vehicle(spec, slot)) return std::move(*error);
   place_vehicle(spec, slot);
   return slot;

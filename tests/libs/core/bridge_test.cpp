@@ -403,6 +403,7 @@ TEST(BridgeRuntimeVehicles, RemovedVehicleGetsNothingAndItsSlotIsReused) {
   EXPECT_EQ(s.bodies[0].name, "Rover");
 
   // The name is free again; the lowest empty slot is reused, and the Quad is tracked anew.
+  EXPECT_EQ(bridge.next_slot(), 0U);
   auto again = bridge.add_vehicle(vehicle("quad", "Quad", Profile::px4, 1));
   ASSERT_TRUE(std::holds_alternative<std::size_t>(again));
   EXPECT_EQ(std::get<std::size_t>(again), 0U);

@@ -186,6 +186,8 @@ class Bridge {
   /// Removes the vehicle in `slot`: nothing more is sent to it or accepted from it. False when the
   /// slot is empty or out of range.
   bool remove_vehicle(std::size_t slot);
+  /// The slot the next add_vehicle() will use (the lowest empty one, or slot_count()).
+  [[nodiscard]] std::size_t next_slot() const;
   /// The slot of the live vehicle named `name`.
   [[nodiscard]] std::optional<std::size_t> find_vehicle(std::string_view name) const;
 
