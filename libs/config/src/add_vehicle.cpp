@@ -115,7 +115,10 @@ ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys
   ConfigResult result;
   result.config = detail::finalize(draft, diagnostics);
   result.errors = std::move(diagnostics.errors);
-  result.warnings = std::move(diagnostics.warnings);
+  // Only what concerns the new vehicle: the others' warnings were given when they came.
+  for (auto& w : diagnostics.warnings) {
+    if (w.file == origin) result.warnings.push_back(std::move(w));
+  }
   if (!result.errors.empty()) result.config.reset();
   return result;
 }

@@ -103,6 +103,13 @@ TEST(AddVehicle, WarnsWhenTheLinkIsShared) {
   const auto result = add_vehicle(demo_config(), keys, kOrigin);
   ASSERT_TRUE(result.ok());
   EXPECT_THAT(warning_lines(result), ElementsAre(HasSubstr("is shared with vehicle \"demo\"")));
+  // A third vehicle on another link: the second one's warning is not repeated.
+  auto third = quad2();
+  third[0].value = std::string("quad3");
+  third[3].value = std::int64_t{3};
+  const auto next = add_vehicle(*result.config, third, kOrigin);
+  ASSERT_TRUE(next.ok());
+  EXPECT_TRUE(next.warnings.empty()) << testing::PrintToString(warning_lines(next));
 }
 
 }  // namespace
