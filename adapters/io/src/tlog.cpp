@@ -20,8 +20,8 @@ std::array<std::uint8_t, 8> tlog_time_prefix(std::int64_t unix_us) noexcept {
 }
 
 std::unique_ptr<TlogWriter> TlogWriter::create(const std::filesystem::path& path,
-                                               std::string* problem) {
-  std::FILE* file = std::fopen(path.c_str(), "wb");
+                                               std::string* problem, Mode mode) {
+  std::FILE* file = std::fopen(path.c_str(), mode == Mode::append ? "ab" : "wb");
   if (file == nullptr) {
     if (problem != nullptr) {
       *problem = path.string() + ": " + std::error_code(errno, std::generic_category()).message();

@@ -47,6 +47,27 @@ TEST(Tlog, WritesPrefixedFramesAndFlushesOnClose) {
   std::filesystem::remove(path);
 }
 
+TEST(Tlog, AppendKeepsEarlierRecordsAndTruncateDoesNot) {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("mocaplink-tlog-append-" + std::to_string(::getpid()) + ".tlog");
+  const std::vector<std::uint8_t> frame = {0xfe, 0x00, 0x00, 0x01, 0xc5, 0x00, 0x00, 0x00};
+  auto size_after = [&](TlogWriter::Mode mode, int records) {
+    std::string problem;
+    auto writer = TlogWriter::create(path, &problem, mode);
+    EXPECT_NE(writer, nullptr) << problem;
+    for (int i = 0; i < records; ++i) writer->write(i, frame);
+    writer->close();
+    return std::filesystem::file_size(path);
+  };
+  const std::uintmax_t record = 8 + frame.size();
+  EXPECT_EQ(size_after(TlogWriter::Mode::truncate, 2), 2 * record);
+  EXPECT_EQ(size_after(TlogWriter::Mode::append, 3), 5 * record);
+  EXPECT_EQ(size_after(TlogWriter::Mode::truncate, 1), record);
+  std::filesystem::remove(path);
+  EXPECT_EQ(size_after(TlogWriter::Mode::append, 1), record);  // created when missing
+  std::filesystem::remove(path);
+}
+
 TEST(Tlog, CreateFailsWithReason) {
   std::string problem;
   EXPECT_EQ(TlogWriter::create("/nonexistent-dir/x.tlog", &problem), nullptr);

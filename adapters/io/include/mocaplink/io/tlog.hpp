@@ -26,9 +26,12 @@ namespace mocaplink::io {
 /// writer stops writing (a half-written record would corrupt every later one).
 class TlogWriter {
  public:
-  /// Creates (truncates) `path`. On failure returns nullptr and sets `*problem`.
+  enum class Mode { truncate, append };
+  /// Creates (truncates) `path`, or with Mode::append opens it to add records after the ones it
+  /// has (created when missing). On failure returns nullptr and sets `*problem`.
   [[nodiscard]] static std::unique_ptr<TlogWriter> create(const std::filesystem::path& path,
-                                                          std::string* problem);
+                                                          std::string* problem,
+                                                          Mode mode = Mode::truncate);
   ~TlogWriter();
   TlogWriter(const TlogWriter&) = delete;
   TlogWriter& operator=(const TlogWriter&) = delete;
