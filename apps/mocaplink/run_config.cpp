@@ -155,30 +155,36 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
   }
   out.tracking = to_core(cfg.tracking);
   for (std::size_t i = 0; i < cfg.vehicles.size(); ++i) {
-    const auto& v = cfg.vehicles[i];
-    const auto axes = core::BodyAxisMapping::parse(config::to_string(v.body_forward),
-                                                   config::to_string(v.body_up));
-    if (!axes) {
-      error = "vehicle " + v.name + ": " + axes.error().field + ": " + axes.error().message;
-      return std::nullopt;
-    }
-    core::VehicleSpec spec;
-    spec.name = v.name;
-    spec.body = v.body;
-    spec.system_id = v.system_id;
-    spec.component_id = v.component_id;
-    spec.profile = to_core(v.profile);
-    spec.messages = to_core(v.messages);
-    spec.rate_hz = v.rate_hz;
-    spec.signing_key = v.signing_key;
-    // One physical channel per vehicle (mavlink-wire.md §7.3): link ids 1, 2, ... in config
-    // order (wrapping after 255 is harmless: each vehicle is its own link).
-    spec.signing_link_id = static_cast<std::uint8_t>((i % 255) + 1);
-    spec.body_axes = *axes;
-    spec.enabled = v.enabled;
-    out.vehicles.push_back(std::move(spec));
+    auto spec = make_vehicle_spec(cfg.vehicles[i], i, error);
+    if (!spec) return std::nullopt;
+    out.vehicles.push_back(std::move(*spec));
   }
   return out;
+}
+
+std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std::size_t slot,
+                                                   std::string& error) {
+  const auto axes =
+      core::BodyAxisMapping::parse(config::to_string(v.body_forward), config::to_string(v.body_up));
+  if (!axes) {
+    error = "vehicle " + v.name + ": " + axes.error().field + ": " + axes.error().message;
+    return std::nullopt;
+  }
+  core::VehicleSpec spec;
+  spec.name = v.name;
+  spec.body = v.body;
+  spec.system_id = v.system_id;
+  spec.component_id = v.component_id;
+  spec.profile = to_core(v.profile);
+  spec.messages = to_core(v.messages);
+  spec.rate_hz = v.rate_hz;
+  spec.signing_key = v.signing_key;
+  // One physical channel per vehicle (mavlink-wire.md §7.3): link ids 1, 2, ... by slot
+  // (wrapping after 255 is harmless: each vehicle is its own link).
+  spec.signing_link_id = static_cast<std::uint8_t>((slot % 255) + 1);
+  spec.body_axes = *axes;
+  spec.enabled = v.enabled;
+  return spec;
 }
 
 double profile_bytes_per_second(const config::Vehicle& vehicle) {

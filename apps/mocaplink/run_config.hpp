@@ -33,6 +33,12 @@ struct RunOptions {
 [[nodiscard]] std::optional<core::BridgeConfig> make_bridge_config(const config::Config& config,
                                                                    std::string& error);
 
+/// The core's view of one vehicle in vehicle slot `slot` (its signing link id is slot + 1, so each
+/// vehicle signs as its own channel). Errors as for make_bridge_config.
+[[nodiscard]] std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& vehicle,
+                                                                 std::size_t slot,
+                                                                 std::string& error);
+
 /// Bytes per second the vehicle's profile puts on its link at its rate (pose messages at rate_hz
 /// plus HEARTBEAT, TIMESYNC and origin at 1 Hz), with every frame at its full MAVLink 2 size (and
 /// signature): an upper bound, compared with a serial link's baud/10.

@@ -41,6 +41,10 @@ constexpr auto kFlushPeriod = 1s;
 constexpr auto kSigningSavePeriod = 30s;
 /// How long a stop waits for stream links to write what they queued.
 constexpr auto kLinger = 250ms;
+/// A removed vehicle's link is closed at once but destroyed this much later: by then every
+/// handler it had pending (aborted reads, timers, the linger) has run (io/link.hpp: a link must
+/// outlive its handlers).
+constexpr auto kRetireAfter = kLinger + 2s;
 /// Frames waiting between the source thread and the loop; ~1 s at 240 Hz. Overflow drops the
 /// oldest (io/bounded_queue.hpp) and is reported in the summary.
 constexpr std::size_t kQueueCapacity = 256;
@@ -78,13 +82,24 @@ class Daemon {
         signing_timer_(loop_),
         summary_timer_(loop_),
         stop_timer_(loop_),
-        summary_(settings.config, settings.summary_period) {}
+        config_(settings.config),
+        summary_(config_, settings.summary_period) {}
 
   int run();
 
  private:
+  struct Retired {
+    std::unique_ptr<io::Link> link;
+    core::HostTime closed;
+  };
+
   void restore_signing();
   void open_links();
+  void start_link(std::size_t slot);
+  std::optional<web::ApiError> add_vehicle(const std::vector<config::VehicleKey>& keys,
+                                           bool paused);
+  std::optional<web::ApiError> remove_vehicle(const std::string& name);
+  void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
   void dispatch(core::BridgeOutput&& out);
@@ -102,12 +117,15 @@ class Daemon {
   io::BoundedQueue<QueuedFrame> queue_;
   std::vector<QueuedFrame> batch_;
   io::SigningStore store_;
-  std::vector<VehicleLink> vehicles_;
+  std::vector<VehicleLink> vehicles_;  // by vehicle slot, as in the Bridge; empty: link == nullptr
+  std::vector<Retired> retired_;       // links of removed vehicles, closed, not yet destroyed
   asio::steady_timer tick_timer_;
   asio::steady_timer flush_timer_;
   asio::steady_timer signing_timer_;
   asio::steady_timer summary_timer_;
   asio::steady_timer stop_timer_;
+  config::Config config_;     // the configuration now: the file's, plus and minus dashboard changes
+  std::string source_error_;  // the source's last problem, "" when connected (dashboard)
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
@@ -130,8 +148,7 @@ void Daemon::restore_signing() {
   // clock handed to the core is moved up to it.
   std::int64_t unix_us = io::unix_now_us();
   std::uint64_t highest = 0;
-  for (std::size_t i = 0; i < settings_.config.vehicles.size(); ++i) {
-    const auto& v = settings_.config.vehicles[i];
+  for (const auto& v : config_.vehicles) {
     if (!v.signing_key) continue;
     std::string problem;
     const auto stored = store_.load(v.name, &problem);
@@ -153,21 +170,119 @@ void Daemon::restore_signing() {
 }
 
 void Daemon::open_links() {
-  const auto& vehicles = settings_.config.vehicles;
+  const auto& vehicles = config_.vehicles;
   vehicles_.reserve(vehicles.size());
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
     vehicles_.push_back(make_vehicle_link(loop_, vehicles[i]));
-    auto& link = *vehicles_.back().link;
-    link.start([this, i](const mavlink::FrameView& frame,
-                         core::HostTime t) { on_vehicle_frame(i, frame, t); },
-               [name = vehicles[i].name](io::LinkState state, const std::string& detail) {
-                 if (state == io::LinkState::down) {
-                   spdlog::warn("vehicle {}: link {}: {}", name, io::to_string(state), detail);
-                 } else {
-                   spdlog::info("vehicle {}: link {}: {}", name, io::to_string(state), detail);
-                 }
-               });
+    start_link(i);
   }
+}
+
+void Daemon::start_link(std::size_t slot) {
+  io::Link* link = vehicles_[slot].link.get();
+  link->start(
+      [this, slot, link](const mavlink::FrameView& frame, core::HostTime t) {
+        // The slot may hold another vehicle's link by now (removed, then added again).
+        if (slot < vehicles_.size() && vehicles_[slot].link.get() == link) {
+          on_vehicle_frame(slot, frame, t);
+        }
+      },
+      [name = vehicles_[slot].vehicle.name](io::LinkState state, const std::string& detail) {
+        if (state == io::LinkState::down) {
+          spdlog::warn("vehicle {}: link {}: {}", name, io::to_string(state), detail);
+        } else {
+          spdlog::info("vehicle {}: link {}: {}", name, io::to_string(state), detail);
+        }
+      });
+}
+
+std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::VehicleKey>& keys,
+                                                 bool paused) {
+  if (stopping_) return web::ApiError{503, "the daemon is stopping", ""};
+  for (const auto& key : keys) {
+    const auto* name = std::get_if<std::string>(&key.value);
+    if (key.key == "name" && name != nullptr && bridge_.find_vehicle(*name)) {
+      return web::ApiError{409, "a vehicle named \"" + *name + "\" exists", "name"};
+    }
+  }
+  // The configuration's own checks first (unique system id per link, origin, ...), so a vehicle
+  // added here is one the file could have held.
+  auto checked = config::add_vehicle(config_, keys, "POST /api/vehicles");
+  if (!checked.ok()) {
+    const config::ConfigError& e = checked.errors.front();
+    return web::ApiError{422, e.key.empty() ? e.message : e.key + ": " + e.message, e.key};
+  }
+  for (const auto& w : checked.warnings) spdlog::warn("dashboard: {}", config::to_string(w));
+  const config::Vehicle vehicle = checked.config->vehicles.back();
+  const std::size_t slot = bridge_.next_slot();
+  std::string error;
+  auto spec = make_vehicle_spec(vehicle, slot, error);
+  if (!spec) return web::ApiError{422, error, ""};
+  auto added = bridge_.add_vehicle(*spec);
+  if (const auto* e = std::get_if<core::BridgeConfigError>(&added)) {
+    const auto dot = e->field.rfind('.');
+    return web::ApiError{422, e->field + ": " + e->message,
+                         dot == std::string::npos ? e->field : e->field.substr(dot + 1)};
+  }
+  if (paused) (void)bridge_.set_paused(slot, true);
+  if (slot >= vehicles_.size()) vehicles_.resize(slot + 1);
+  vehicles_[slot] = make_vehicle_link(loop_, vehicle);
+  start_link(slot);
+  if (vehicle.signing_key) {
+    std::string problem;
+    const auto stored = store_.load(vehicle.name, &problem);
+    if (!problem.empty()) spdlog::warn("signing: {}", problem);
+    if (stored) {
+      vehicles_[slot].last_signing_10us = *stored;
+      if (*stored >= mavlink::signing_timestamp_from_unix_us(io::unix_now_us())) {
+        // restore_signing() moves the clock up only at start; a vehicle added later signs from
+        // the wall clock, which this vehicle has seen pass already.
+        spdlog::warn(
+            "signing: vehicle {}'s stored signing timestamp is ahead of the wall clock; it may "
+            "reject our frames until the clock catches up (restart mocaplink to sign from the "
+            "stored value)",
+            vehicle.name);
+      }
+    }
+  }
+  if (recorder_) {
+    std::string problem;
+    if (!recorder_->add_vehicle(slot, vehicle.name, &problem)) {
+      spdlog::warn("recording: vehicle {} is not recorded: {}", vehicle.name, problem);
+    }
+  }
+  config_ = std::move(*checked.config);
+  spdlog::info("dashboard: vehicle {} added{}", vehicle.name, paused ? " (paused)" : "");
+  summary_.describe_vehicle(vehicle, *vehicles_[slot].link);
+  return std::nullopt;
+}
+
+std::optional<web::ApiError> Daemon::remove_vehicle(const std::string& name) {
+  if (stopping_) return web::ApiError{503, "the daemon is stopping", ""};
+  const auto slot = bridge_.find_vehicle(name);
+  if (!slot || *slot >= vehicles_.size() || !vehicles_[*slot].link) {
+    return web::ApiError{404, "no vehicle named \"" + name + "\"", ""};
+  }
+  (void)bridge_.remove_vehicle(*slot);
+  VehicleLink& v = vehicles_[*slot];
+  if (v.signing && v.last_signing_10us != 0) {
+    std::string problem;
+    if (!store_.save(name, v.last_signing_10us, &problem)) {
+      spdlog::warn("signing: cannot persist the timestamp: {}", problem);
+    }
+  }
+  v.link->close(kLinger);
+  retired_.push_back(Retired{std::move(v.link), io::host_now()});
+  if (recorder_) recorder_->remove_vehicle(*slot);
+  vehicles_[*slot] = VehicleLink{};
+  while (!vehicles_.empty() && !vehicles_.back().link) vehicles_.pop_back();
+  std::erase_if(config_.vehicles, [&](const config::Vehicle& c) { return c.name == name; });
+  spdlog::info("dashboard: vehicle {} removed", name);
+  return std::nullopt;
+}
+
+void Daemon::destroy_retired(core::HostTime now) {
+  std::erase_if(retired_, [&](const Retired& r) { return now - r.closed >= kRetireAfter; });
 }
 
 void Daemon::start_source() {
@@ -182,6 +297,11 @@ void Daemon::start_source() {
           if (stopping_) return;
           const bool connected = state == sources::SourceState::connected;
           bridge_.on_source_connection(connected);
+          if (connected) {
+            source_error_.clear();
+          } else if (state == sources::SourceState::disconnected) {
+            source_error_ = detail.empty() ? "disconnected" : detail;
+          }
           if (state == sources::SourceState::disconnected) {
             spdlog::warn("source {}: {}{}{}", source_->url(), sources::to_string(state),
                          detail.empty() ? "" : ": ", detail);
@@ -208,7 +328,7 @@ void Daemon::dispatch(core::BridgeOutput&& out) {
   const bool recording = recorder_ != nullptr;
   const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
   for (const auto& m : out.messages) {
-    if (m.vehicle >= vehicles_.size()) continue;
+    if (m.vehicle >= vehicles_.size() || !vehicles_[m.vehicle].link) continue;
     auto& v = vehicles_[m.vehicle];
     const auto bytes = m.frame.bytes();
     (void)v.link->send(bytes);
@@ -231,11 +351,10 @@ void Daemon::on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& fra
 }
 
 void Daemon::save_signing() {
-  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
-    const auto& v = vehicles_[i];
-    if (!v.signing || v.last_signing_10us == 0) continue;
+  for (const auto& v : vehicles_) {
+    if (!v.link || !v.signing || v.last_signing_10us == 0) continue;
     std::string problem;
-    if (!store_.save(settings_.config.vehicles[i].name, v.last_signing_10us, &problem)) {
+    if (!store_.save(v.vehicle.name, v.last_signing_10us, &problem)) {
       spdlog::warn("signing: cannot persist the timestamp: {}", problem);
     }
   }
@@ -264,7 +383,9 @@ void Daemon::stop(const std::string& reason) {
                  recorder_->dir().string(), recorder_->failed() ? " (WRITE ERRORS)" : "");
   }
   // 3. Stream links get a bounded time to write their backlog; then the loop ends.
-  for (auto& v : vehicles_) v.link->close(kLinger);
+  for (auto& v : vehicles_) {
+    if (v.link) v.link->close(kLinger);
+  }
   stop_timer_.expires_after(kLinger + 50ms);
   stop_timer_.async_wait([this](const std::error_code&) { loop_.stop(); });
 }
@@ -279,8 +400,12 @@ int Daemon::run() {
     }
   });
   // The dashboard first: a bad [http] listen stops us before anything is sent.
-  auto dashboard =
-      RunDashboard::start(loop_, DashboardAccess{bridge_, settings_.config, vehicles_});
+  auto dashboard = RunDashboard::start(
+      loop_, DashboardAccess{bridge_, config_, vehicles_, source_error_,
+                             [this](const std::vector<config::VehicleKey>& keys, bool paused) {
+                               return add_vehicle(keys, paused);
+                             },
+                             [this](const std::string& name) { return remove_vehicle(name); }});
   if (const auto* error = std::get_if<std::string>(&dashboard)) {
     spdlog::error("{}", *error);
     return kExitRuntime;
@@ -288,12 +413,14 @@ int Daemon::run() {
   dashboard_ = std::move(std::get<std::unique_ptr<RunDashboard>>(dashboard));
   restore_signing();
   open_links();
-  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
-    summary_.describe_vehicle(settings_.config.vehicles[i], *vehicles_[i].link);
-  }
+  for (const auto& v : vehicles_) summary_.describe_vehicle(v.vehicle, *v.link);
   summary_.begin(io::host_now());
   start_source();
-  every(tick_timer_, kTickPeriod, [this] { dispatch(bridge_.on_tick(io::host_now())); });
+  every(tick_timer_, kTickPeriod, [this] {
+    const core::HostTime now = io::host_now();
+    dispatch(bridge_.on_tick(now));
+    destroy_retired(now);
+  });
   every(flush_timer_, kFlushPeriod, [this] {
     if (recorder_) recorder_->flush();
   });

@@ -36,9 +36,7 @@ std::optional<core::MessageSet> message_set(const std::vector<std::string>& name
 class RunDashboard::Backend final : public web::DashboardBackend {
  public:
   Backend(asio::io_context& loop, DashboardAccess access)
-      : loop_(loop), access_(access), builder_(io::host_now()) {
-    for (const auto& v : access_.config.vehicles)
-      context_.links.push_back(config::to_string(v.link));
+      : loop_(loop), access_(std::move(access)), builder_(io::host_now()) {
     context_.source = access_.config.mocap.source.text;
   }
 
@@ -71,33 +69,48 @@ class RunDashboard::Backend final : public web::DashboardBackend {
   }
 
   web::StatusView build_status() {
-    context_.links_down.assign(access_.vehicles.size(), false);
-    for (std::size_t i = 0; i < access_.vehicles.size(); ++i) {
-      const auto state = access_.vehicles[i].link->state();
-      context_.links_down[i] = state == io::LinkState::down || state == io::LinkState::closed;
+    // The context lists links in the snapshot's vehicle order (live vehicles by slot).
+    const core::BridgeSnapshot snapshot = access_.bridge.snapshot(io::host_now());
+    context_.source_error = access_.source_error;
+    context_.links.clear();
+    context_.links_down.clear();
+    for (const auto& v : snapshot.vehicles) {
+      const io::Link* link =
+          v.index < access_.vehicles.size() ? access_.vehicles[v.index].link.get() : nullptr;
+      context_.links.push_back(link != nullptr ? link->url() : "");
+      const auto state = link != nullptr ? link->state() : io::LinkState::closed;
+      context_.links_down.push_back(state == io::LinkState::down || state == io::LinkState::closed);
     }
-    return builder_.build(access_.bridge.snapshot(io::host_now()), context_);
+    return builder_.build(snapshot, context_);
   }
 
   std::optional<web::ApiError> apply_on_loop(const web::VehicleChange& change) {
-    if (const auto* update = std::get_if<web::UpdateVehicle>(&change))
+    if (const auto* update = std::get_if<web::UpdateVehicle>(&change)) {
       return update_vehicle(update->patch);
-    // Adding and removing vehicles needs a link opened or closed and the Bridge rebuilt; not
-    // supported by this daemon yet.
-    return web::ApiError{409,
-                         "adding and removing vehicles at run time is not supported yet; "
-                         "edit the configuration and restart",
-                         ""};
+    }
+    if (const auto* remove = std::get_if<web::RemoveVehicle>(&change)) {
+      return access_.remove_vehicle(remove->name);
+    }
+    const web::VehicleSpec& spec = std::get<web::AddVehicle>(change).spec;
+    return access_.add_vehicle(vehicle_keys(spec), spec.paused);
+  }
+
+  /// The API's vehicle as the keys of a [[vehicle]] table (docs/api.md: the same keys).
+  static std::vector<config::VehicleKey> vehicle_keys(const web::VehicleSpec& spec) {
+    std::vector<config::VehicleKey> keys{
+        {"name", spec.name},       {"body", spec.body},
+        {"link", spec.link},       {"system_id", std::int64_t{spec.system_id}},
+        {"profile", spec.profile}, {"rate_hz", spec.rate_hz},
+    };
+    if (!spec.messages.empty()) keys.push_back({"messages", spec.messages});
+    if (!spec.signing_key.empty()) keys.push_back({"signing_key", spec.signing_key});
+    return keys;
   }
 
   std::optional<web::ApiError> update_vehicle(const web::VehiclePatch& patch) {
-    const auto& vehicles = access_.config.vehicles;
-    std::size_t index = vehicles.size();
-    for (std::size_t i = 0; i < vehicles.size(); ++i) {
-      if (vehicles[i].name == patch.name) index = i;
-    }
-    if (index == vehicles.size())
-      return web::ApiError{404, "no vehicle named \"" + patch.name + "\"", ""};
+    const auto found = access_.bridge.find_vehicle(patch.name);
+    if (!found) return web::ApiError{404, "no vehicle named \"" + patch.name + "\"", ""};
+    const std::size_t index = *found;
     // Check everything first, then apply: nothing half-applied.
     std::optional<core::MessageSet> messages;
     if (patch.messages) {

@@ -2,15 +2,18 @@
 // runs every request on the daemon's event loop, so the Bridge stays single-threaded.
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include <asio/io_context.hpp>
 
-#include "mocaplink/config/config.hpp"
+#include "mocaplink/config/load.hpp"
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/web/vehicle_request.hpp"
 #include "run_links.hpp"
 
 namespace mocaplink::web {
@@ -22,8 +25,15 @@ namespace mocaplink::app {
 /// What the dashboard reads and changes; all of it is touched on the loop thread only.
 struct DashboardAccess {
   core::Bridge& bridge;
-  const config::Config& config;
-  const std::vector<VehicleLink>& vehicles;  ///< index as in the Bridge
+  const config::Config& config;              ///< [http] and the source URL
+  const std::vector<VehicleLink>& vehicles;  ///< by vehicle slot, as in the Bridge
+  const std::string& source_error;           ///< the source's last problem, "" when connected
+  /// Adds a vehicle given as the keys of a [[vehicle]] table and starts it (paused if asked).
+  std::function<std::optional<web::ApiError>(const std::vector<config::VehicleKey>& keys,
+                                             bool paused)>
+      add_vehicle;
+  /// Stops and removes the vehicle named so.
+  std::function<std::optional<web::ApiError>(const std::string& name)> remove_vehicle;
 };
 
 class RunDashboard {

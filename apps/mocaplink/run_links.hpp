@@ -13,7 +13,8 @@
 namespace mocaplink::app {
 
 struct VehicleLink {
-  std::unique_ptr<io::Link> link;
+  config::Vehicle vehicle;              ///< as configured, or as added from the dashboard
+  std::unique_ptr<io::Link> link;       ///< nullptr: an empty vehicle slot (vehicle removed)
   bool signing = false;                 ///< the vehicle has a signing key
   std::uint64_t last_signing_10us = 0;  ///< timestamp of the latest signed frame sent (0: none)
 };

@@ -28,12 +28,28 @@ std::unique_ptr<Recorder> Recorder::create(const std::filesystem::path& dir,
     }
     return nullptr;
   }
-  for (const auto& name : vehicles) {
-    auto tlog = io::TlogWriter::create(dir / (name + ".tlog"), problem);
-    if (!tlog) return nullptr;
-    recorder->tlogs_.push_back(std::move(tlog));
+  for (std::size_t slot = 0; slot < vehicles.size(); ++slot) {
+    if (!recorder->add_vehicle(slot, vehicles[slot], problem)) return nullptr;
   }
   return recorder;
+}
+
+bool Recorder::add_vehicle(std::size_t slot, const std::string& name, std::string* problem) {
+  if (slot >= tlogs_.size()) tlogs_.resize(slot + 1);
+  const bool again = !opened_.insert(name).second;
+  tlogs_[slot] =
+      io::TlogWriter::create(dir_ / (name + ".tlog"), problem,
+                             again ? io::TlogWriter::Mode::append : io::TlogWriter::Mode::truncate);
+  if (!tlogs_[slot]) tlog_failed_ = true;
+  return tlogs_[slot] != nullptr;
+}
+
+void Recorder::remove_vehicle(std::size_t slot) {
+  if (slot >= tlogs_.size() || !tlogs_[slot]) return;
+  tlogs_[slot]->close();
+  if (tlogs_[slot]->failed()) tlog_failed_ = true;
+  tlogs_[slot].reset();
+  while (!tlogs_.empty() && !tlogs_.back()) tlogs_.pop_back();
 }
 
 Recorder::Recorder(std::filesystem::path dir, std::string source_url)
@@ -69,12 +85,14 @@ void Recorder::on_frame(const core::MocapFrame& frame) {
 
 void Recorder::on_mavlink(std::size_t vehicle, std::int64_t unix_us,
                           std::span<const std::uint8_t> bytes) {
-  if (vehicle < tlogs_.size()) tlogs_[vehicle]->write(unix_us, bytes);
+  if (vehicle < tlogs_.size() && tlogs_[vehicle]) tlogs_[vehicle]->write(unix_us, bytes);
 }
 
 void Recorder::flush() {
   if (csv_ != nullptr && !csv_failed_ && std::fflush(csv_) != 0) csv_failed_ = true;
-  for (auto& tlog : tlogs_) tlog->flush();
+  for (auto& tlog : tlogs_) {
+    if (tlog) tlog->flush();
+  }
 }
 
 void Recorder::close() {
@@ -84,13 +102,15 @@ void Recorder::close() {
     if (std::fclose(csv_) != 0) csv_failed_ = true;
     csv_ = nullptr;
   }
-  for (auto& tlog : tlogs_) tlog->close();
+  for (auto& tlog : tlogs_) {
+    if (tlog) tlog->close();
+  }
 }
 
 bool Recorder::failed() const noexcept {
-  if (csv_failed_) return true;
+  if (csv_failed_ || tlog_failed_) return true;
   for (const auto& tlog : tlogs_) {
-    if (tlog->failed()) return true;
+    if (tlog && tlog->failed()) return true;
   }
   return false;
 }

@@ -2,7 +2,9 @@
 //   DIR/mocap.csv      every mocap frame, DESIGN.md "Recording format" (replay://DIR/mocap.csv)
 //   DIR/<vehicle>.tlog everything sent to and received from that vehicle, one .tlog record per
 //                      MAVLink frame (io/tlog.hpp; MAVProxy, MAVExplorer, pymavlink read it)
-// DIR is created if needed; files of an earlier recording with the same names are replaced.
+// DIR is created if needed; files of an earlier recording with the same names are replaced. A
+// vehicle added at run time gets its .tlog then; one removed has its .tlog closed, and when a
+// vehicle of that name is added again in the same recording its records are appended.
 // Files are written through user-space buffers, flushed by flush() (the daemon calls it every
 // second) and on close(), so a clean stop leaves complete files and a crash loses at most about a
 // second. Not thread-safe (event loop only).
@@ -13,6 +15,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,11 +27,17 @@ namespace mocaplink::app {
 
 class Recorder {
  public:
-  /// Creates DIR and opens every file. nullptr with `*problem` set on an I/O error.
+  /// Creates DIR and opens every file; `vehicles` are the names by vehicle slot. nullptr with
+  /// `*problem` set on an I/O error.
   [[nodiscard]] static std::unique_ptr<Recorder> create(const std::filesystem::path& dir,
                                                         const std::string& source_url,
                                                         const std::vector<std::string>& vehicles,
                                                         std::string* problem);
+  /// Opens the .tlog of a vehicle added at run time in `slot`. False with `*problem` set when the
+  /// file cannot be opened (the vehicle then goes unrecorded; failed() says so).
+  bool add_vehicle(std::size_t slot, const std::string& name, std::string* problem);
+  /// Closes the .tlog of the vehicle in `slot` (removed at run time).
+  void remove_vehicle(std::size_t slot);
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
@@ -36,7 +45,8 @@ class Recorder {
   /// One mocap frame. Frames whose capture time goes back (a restarted server) are skipped and
   /// counted: the format requires time_s never to decrease.
   void on_frame(const core::MocapFrame& frame);
-  /// One MAVLink frame sent to or received from vehicle `vehicle`, at Unix time `unix_us`.
+  /// One MAVLink frame sent to or received from the vehicle in slot `vehicle`, at Unix time
+  /// `unix_us`.
   void on_mavlink(std::size_t vehicle, std::int64_t unix_us, std::span<const std::uint8_t> bytes);
   void flush();
   /// Flushes and closes every file (idempotent; the destructor calls it).
@@ -58,7 +68,9 @@ class Recorder {
   bool header_written_ = false;
   std::optional<core::SourceTime> first_capture_;
   std::optional<core::SourceTime> last_capture_;
-  std::vector<std::unique_ptr<io::TlogWriter>> tlogs_;
+  std::vector<std::unique_ptr<io::TlogWriter>> tlogs_;  // by vehicle slot; nullptr: none
+  std::set<std::string> opened_;                        // names whose .tlog this recording made
+  bool tlog_failed_ = false;                            // a closed or unopened .tlog failed
   std::uint64_t frames_written_ = 0;
   std::uint64_t frames_skipped_ = 0;
 };

@@ -73,22 +73,29 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
                final ? "final: " : "", config_.mocap.source.text,
                st.connected ? "connected" : "not connected", st.frames, st.frame_rate_hz,
                st.dropped, queue_overflows);
-  previous_.resize(links.size());
-  const bool detailed = links.size() <= kDetailedVehicles;
+  const bool detailed = snapshot.vehicles.size() <= kDetailedVehicles;
+  std::map<std::string, Previous> next;  // only live vehicles: removed ones are forgotten
   double min_hz = 0.0;
   double max_hz = 0.0;
   std::uint64_t total_sent = 0;
   std::uint64_t total_dropped = 0;
   std::uint64_t total_errors = 0;
-  for (std::size_t i = 0; i < links.size() && i < snapshot.vehicles.size(); ++i) {
-    const auto& v = snapshot.vehicles[i];
-    const auto c = links[i].link->counters();
+  bool first = true;
+  for (const auto& v : snapshot.vehicles) {
+    if (v.index >= links.size() || !links[v.index].link) continue;
+    const io::Link& link = *links[v.index].link;
+    const auto c = link.counters();
     const std::uint64_t poses = poses_sent(v.sender.counters);
-    const double pose_hz = dt > 0 ? static_cast<double>(poses - previous_[i].poses) / dt : 0.0;
-    previous_[i] = Previous{poses, c.frames_sent};
+    // A vehicle added since the last summary (or removed and added again) counts from zero.
+    const auto before = previous_.find(v.name);
+    const std::uint64_t poses_before =
+        before != previous_.end() && before->second.poses <= poses ? before->second.poses : 0;
+    const double pose_hz = dt > 0 ? static_cast<double>(poses - poses_before) / dt : 0.0;
+    next[v.name] = Previous{poses, c.frames_sent};
     const std::uint64_t dropped = c.dropped_down + c.dropped_backlog;
     const std::uint64_t errors = c.send_errors + c.receive_errors;
-    min_hz = i == 0 ? pose_hz : std::min(min_hz, pose_hz);
+    min_hz = first ? pose_hz : std::min(min_hz, pose_hz);
+    first = false;
     max_hz = std::max(max_hz, pose_hz);
     total_sent += c.frames_sent;
     total_dropped += dropped;
@@ -98,17 +105,18 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
     spdlog::log(problem ? spdlog::level::warn : spdlog::level::info,
                 "{}vehicle {}: {:.1f} Hz poses ({} total), link {} {}: {} frames sent, {} "
                 "dropped, {} errors, {} refused; {} frames received, {} rejected; {}",
-                final ? "final: " : "", v.name, pose_hz, poses, links[i].link->url(),
-                io::to_string(links[i].link->state()), c.frames_sent, dropped, errors, c.refused,
+                final ? "final: " : "", v.name, pose_hz, poses, link.url(),
+                io::to_string(link.state()), c.frames_sent, dropped, errors, c.refused,
                 c.parser.frames, rejected(c.parser), vehicle_state(v));
   }
   if (!detailed) {
     spdlog::info(
         "{}vehicles: {}, pose rate {:.1f}..{:.1f} Hz, {} frames sent, {} dropped, {} "
         "errors",
-        final ? "final: " : "", links.size(), min_hz, max_hz, total_sent, total_dropped,
+        final ? "final: " : "", snapshot.vehicles.size(), min_hz, max_hz, total_sent, total_dropped,
         total_errors);
   }
+  previous_ = std::move(next);
 }
 
 }  // namespace mocaplink::app

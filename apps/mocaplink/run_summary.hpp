@@ -33,7 +33,7 @@ class Summary {
   /// Logs a core event, at most one per (kind, subject) per second; the rest are counted and
   /// mentioned with the next one logged.
   void on_event(const core::BridgeEvent& event, core::HostTime now);
-  /// The periodic (or, with `final`, the last) summary.
+  /// The periodic (or, with `final`, the last) summary. `links` by vehicle slot.
   void log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
            std::uint64_t queue_overflows, bool final);
 
@@ -51,7 +51,7 @@ class Summary {
   std::chrono::milliseconds period_;
   std::uint64_t frames_ = 0;
   std::map<std::string, Limit> limits_;
-  std::vector<Previous> previous_;
+  std::map<std::string, Previous> previous_;  // by vehicle name
   std::optional<core::HostTime> previous_time_;
 };
 

@@ -28,7 +28,9 @@ function startReceiver() {
     const arrivals = [];  // { t (ms, performance.now), msgid }
     const bytes = new PassThrough();
     bytes.pipe(new MavLinkPacketSplitter()).pipe(new MavLinkPacketParser())
-      .on('data', (packet) => arrivals.push({ t: performance.now(), msgid: packet.header.msgid }));
+      .on('data', (packet) => arrivals.push({
+        t: performance.now(), msgid: packet.header.msgid, sysid: packet.header.sysid,
+      }));
     socket.on('message', (datagram) => bytes.write(datagram));
     socket.bind(0, '127.0.0.1', () => resolve({ socket, port: socket.address().port, arrivals }));
   });
@@ -137,6 +139,60 @@ describe('dashboard of mocaplink run (sim source)', () => {
     await card.locator('.v-messages input[value="odometry"]').check();
     await sleep(300);
     assert.ok(await measure(receiver, ODOMETRY, 1000) > 10);
+  });
+
+  test('a vehicle added in the form gets its own stream; removing it stops everything', async () => {
+    const second = await startReceiver();
+    try {
+      const form = page.locator('#add-vehicle');
+      await form.locator('[name=name]').fill('rover');
+      await form.locator('[name=body]').fill('Body2');
+      // First the demo's own link and system id: refused by the daemon, the field marked.
+      await form.locator('[name=link]').fill(`udp://127.0.0.1:${receiver.port}`);
+      await form.locator('[name=system_id]').fill('1');
+      await form.locator('[name=rate_hz]').fill('25');
+      const errorsBefore = browser.errors.length;
+      await form.locator('button[type=submit]').click();
+      await page.locator('#add-error', { hasText: 'system_id 1 is already used' }).waitFor();
+      assert.equal(await form.locator('[name=system_id]').getAttribute('aria-invalid'), 'true');
+      // Chromium logs the refused request itself; that one is expected, nothing else.
+      const logged = browser.errors.splice(errorsBefore);
+      assert.ok(logged.every((e) => /status of 422/.test(e)), JSON.stringify(logged));
+
+      await form.locator('[name=link]').fill(`udp://127.0.0.1:${second.port}`);
+      await form.locator('[name=system_id]').fill('2');
+      const posted = page.waitForResponse((r) => r.request().method() === 'POST');
+      await form.locator('button[type=submit]').click();
+      assert.equal((await posted).status(), 201);
+      const card = page.locator('[data-vehicle="rover"]');
+      await card.locator('.v-link', { hasText: `udp://127.0.0.1:${second.port}` }).waitFor();
+      await sleep(500);
+      const from = performance.now();
+      await sleep(2000);
+      const got = second.arrivals.filter((a) => a.msgid === ODOMETRY && a.t >= from);
+      const hz = got.length / 2;
+      assert.ok(hz > 20 && hz < 30, `rover ODOMETRY at ${hz} Hz, added at 25`);
+      assert.deepEqual([...new Set(got.map((a) => a.sysid))], [2]);
+      // The card shows the measured rate like any configured vehicle's.
+      await page.waitForFunction(() => {
+        const v = parseFloat(document.querySelector('[data-vehicle="rover"] .v-actual').textContent);
+        return v > 20 && v < 30;
+      }, null, { timeout: 5000 });
+
+      const remove = card.locator('.v-remove');
+      await remove.click();
+      const deleted = page.waitForResponse((r) => r.request().method() === 'DELETE');
+      await remove.click();
+      assert.equal((await deleted).status(), 204);
+      await card.waitFor({ state: 'detached' });
+      await sleep(300);
+      const silentFrom = second.arrivals.length;
+      await sleep(1500);
+      assert.equal(second.arrivals.length, silentFrom, 'the removed vehicle still gets MAVLink');
+      assert.ok(await measure(receiver, ODOMETRY, 1000) > 10, 'the demo vehicle stopped too');
+    } finally {
+      second.socket.close();
+    }
   });
 
   test('phone width has no horizontal overflow; screenshot', async () => {
