@@ -2,7 +2,9 @@
 // StreamParser and decode_message, as the daemon does) and mocap poses with arbitrary values (NaN,
 // infinities, huge numbers, non-unit quaternions). Properties beyond "no crash, no sanitizer
 // report": every frame the Bridge emits parses back as one valid MAVLink 2 frame from the vehicle's
-// (sysid, compid 197), and no vision message ever carries a non-finite position.
+// (sysid, compid 197), goes to a live vehicle slot, and no vision message ever carries a
+// non-finite position. Vehicles are removed and added again between rounds (the dashboard).
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -19,9 +21,8 @@ namespace {
 
 using namespace mocaplink;
 
-core::Bridge make_bridge() {
-  core::BridgeConfig c;
-  c.origin = core::GeodeticPosition{40.1156786, -88.2243507, 222.196};
+// The vehicle for a slot: system id slot + 1 (check() relies on it).
+core::VehicleSpec spec_for(std::size_t slot) {
   core::VehicleSpec quad;
   quad.name = "quad";
   quad.body = "Body1";
@@ -40,9 +41,19 @@ core::Bridge make_bridge() {
   rover.system_id = 2;
   rover.profile = core::Profile::ardupilot_gps;
   rover.rate_hz = 500.0;
-  c.vehicles = {quad, rover};
+  core::VehicleSpec spec = slot == 0 ? quad : rover;
+  spec.system_id = static_cast<std::uint8_t>(slot + 1);
+  return spec;
+}
+
+core::Bridge make_bridge() {
+  core::BridgeConfig c;
+  c.origin = core::GeodeticPosition{40.1156786, -88.2243507, 222.196};
+  c.vehicles = {spec_for(0), spec_for(1)};
   return std::get<core::Bridge>(core::Bridge::make(c, core::HostTime{}));
 }
+
+std::array<bool, 2> g_live{};
 
 double take_double(std::span<const std::uint8_t>& bytes) {
   double v = 0.0;
@@ -56,7 +67,8 @@ double take_double(std::span<const std::uint8_t>& bytes) {
 void check(const core::BridgeOutput& out) {
   for (const auto& m : out.messages) {
     const auto parsed = mavlink::parse_frame(m.frame.bytes());
-    if (!parsed || parsed->sysid != (m.vehicle == 0 ? 1 : 2) || parsed->compid != 197) std::abort();
+    if (m.vehicle >= g_live.size() || !g_live[m.vehicle]) std::abort();
+    if (!parsed || parsed->sysid != m.vehicle + 1 || parsed->compid != 197) std::abort();
     if (const auto* odo = std::get_if<mavlink::Odometry>(&m.message)) {
       if (!std::isfinite(odo->x) || !std::isfinite(odo->y) || !std::isfinite(odo->z)) std::abort();
     }
@@ -67,6 +79,7 @@ void check(const core::BridgeOutput& out) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   core::Bridge bridge = make_bridge();
+  g_live = {true, true};
   std::span<const std::uint8_t> bytes(data, size);
   // Up to 8 chunks: each is a mocap frame (2 bodies, 7 doubles each) then a MAVLink datagram
   // whose length is the chunk's first byte.
@@ -90,6 +103,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       frame.bodies.push_back(s);
     }
     const core::HostTime now{std::chrono::milliseconds(t_ms + 5)};
+    // A control byte: bit k set toggles vehicle k (removed if there, added again if not).
+    const std::uint8_t control = bytes.empty() ? 0 : bytes[0];
+    if (!bytes.empty()) bytes = bytes.subspan(1);
+    for (std::size_t k = 0; k < g_live.size(); ++k) {
+      if ((control & (1U << k)) == 0) continue;
+      if (g_live[k]) {
+        if (!bridge.remove_vehicle(k)) std::abort();
+        g_live[k] = false;
+      } else {
+        const std::size_t slot = bridge.next_slot();
+        const auto added = bridge.add_vehicle(spec_for(slot));
+        if (!std::holds_alternative<std::size_t>(added) || std::get<std::size_t>(added) != slot) {
+          std::abort();
+        }
+        g_live[slot] = true;
+      }
+    }
     check(bridge.on_frame(frame, now));
     check(bridge.on_tick(now));
     if (bytes.empty()) break;
