@@ -61,22 +61,6 @@ std::optional<detail::Value> typed(const VehicleKey& key, detail::ValueType type
   return std::nullopt;
 }
 
-const char* expected_name(detail::ValueType type) {
-  switch (type) {
-    case detail::ValueType::string:
-      return "a string";
-    case detail::ValueType::integer:
-      return "an integer";
-    case detail::ValueType::number:
-      return "a number";
-    case detail::ValueType::boolean:
-      return "true or false";
-    case detail::ValueType::string_list:
-      return "a list of strings";
-  }
-  return "?";
-}
-
 }  // namespace
 
 ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
@@ -107,7 +91,7 @@ ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys
     } else {
       diagnostics.error(
           where, key.key,
-          std::string("expected ") + expected_name(spec->type) + ", got " + type_name(key));
+          std::string("expected ") + detail::expected_name(spec->type) + ", got " + type_name(key));
       vehicle.mistyped.push_back(key.key);
     }
   }

@@ -108,6 +108,9 @@ struct ConfigDraft {
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")
 };
 
+/// "a string", "an integer", "a number", "true or false", "an array of strings" (keys.cpp).
+[[nodiscard]] const char* expected_name(ValueType type);
+
 /// A key of a table: its name, declared type, and what to do with a value of that type.
 template <typename Target>
 struct KeySpec {

@@ -311,6 +311,22 @@ std::span<const KeySpec<ConfigDraft>> tracking_keys() {
 std::span<const KeySpec<ConfigDraft>> http_keys() {
   return kHttpKeys;
 }
+const char* expected_name(ValueType type) {
+  switch (type) {
+    case ValueType::string:
+      return "a string";
+    case ValueType::integer:
+      return "an integer";
+    case ValueType::number:
+      return "a number";
+    case ValueType::boolean:
+      return "true or false";
+    case ValueType::string_list:
+      return "an array of strings";
+  }
+  return "?";
+}
+
 std::span<const KeySpec<VehicleDraft>> vehicle_keys() {
   return kVehicleKeys;
 }

@@ -46,22 +46,6 @@ const char* type_name(toml::node_type type) {
   return "nothing";
 }
 
-const char* expected_name(ValueType type) {
-  switch (type) {
-    case ValueType::string:
-      return "a string";
-    case ValueType::integer:
-      return "an integer";
-    case ValueType::number:
-      return "a number";
-    case ValueType::boolean:
-      return "true or false";
-    case ValueType::string_list:
-      return "an array of strings";
-  }
-  return "?";
-}
-
 std::optional<Value> to_value(const toml::node& node, ValueType type, Where where, std::string key,
                               Diagnostics& diagnostics) {
   Value value;
