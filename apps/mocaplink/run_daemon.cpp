@@ -94,6 +94,7 @@ class Daemon {
   };
 
   void restore_signing();
+  void restore_signing(std::size_t slot, const config::Vehicle& vehicle);
   void open_links();
   void start_link(std::size_t slot);
   std::optional<web::ApiError> add_vehicle(const std::vector<config::VehicleKey>& keys,
@@ -142,31 +143,28 @@ void Daemon::every(asio::steady_timer& timer, std::chrono::milliseconds period, 
 }
 
 void Daemon::restore_signing() {
-  // Restore: every link continues above its persisted timestamp (mavlink-wire.md §7.3). The core
-  // signs at max(now, last + 1) from the wall clock we give it, so when a stored value is ahead
-  // of the wall clock (clock stepped back, or a fast restart on a machine without RTC) the wall
-  // clock handed to the core is moved up to it.
-  std::int64_t unix_us = io::unix_now_us();
-  std::uint64_t highest = 0;
-  for (const auto& v : config_.vehicles) {
-    if (!v.signing_key) continue;
-    std::string problem;
-    const auto stored = store_.load(v.name, &problem);
-    if (!problem.empty()) spdlog::warn("signing: {}", problem);
-    if (stored) highest = std::max(highest, *stored);
+  bridge_.set_wall_clock(io::host_now(), io::unix_now_us());
+  for (std::size_t slot = 0; slot < config_.vehicles.size(); ++slot) {
+    restore_signing(slot, config_.vehicles[slot]);
   }
-  if (highest > 0) {
-    const std::int64_t needed_us =
-        mavlink::kSigningEpochUnixS * 1'000'000 + static_cast<std::int64_t>(highest + 1) * 10;
-    if (needed_us > unix_us) {
-      spdlog::warn(
-          "signing: a stored signing timestamp is {:.3f} s ahead of the wall clock; signing "
-          "continues from it",
-          static_cast<double>(needed_us - unix_us) / 1e6);
-      unix_us = needed_us;
-    }
+}
+
+void Daemon::restore_signing(std::size_t slot, const config::Vehicle& vehicle) {
+  // Every vehicle continues above its persisted timestamp (mavlink-wire.md §7.3): the core signs
+  // at max(wall clock, last + 1), and the stored value becomes that vehicle's last.
+  if (!vehicle.signing_key) return;
+  std::string problem;
+  const auto stored = store_.load(vehicle.name, &problem);
+  if (!problem.empty()) spdlog::warn("signing: {}", problem);
+  if (!stored) return;
+  (void)bridge_.raise_signing_timestamp(slot, *stored);
+  const std::uint64_t now = mavlink::signing_timestamp_from_unix_us(io::unix_now_us());
+  if (*stored >= now) {
+    spdlog::warn(
+        "signing: vehicle {}: the stored signing timestamp is {:.3f} s ahead of the wall clock "
+        "(clock stepped back?); signing continues from it",
+        vehicle.name, static_cast<double>(*stored - now) / 1e5);
   }
-  bridge_.set_wall_clock(io::host_now(), unix_us);
 }
 
 void Daemon::open_links() {
@@ -228,23 +226,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   if (slot >= vehicles_.size()) vehicles_.resize(slot + 1);
   vehicles_[slot] = make_vehicle_link(loop_, vehicle);
   start_link(slot);
-  if (vehicle.signing_key) {
-    std::string problem;
-    const auto stored = store_.load(vehicle.name, &problem);
-    if (!problem.empty()) spdlog::warn("signing: {}", problem);
-    if (stored) {
-      vehicles_[slot].last_signing_10us = *stored;
-      if (*stored >= mavlink::signing_timestamp_from_unix_us(io::unix_now_us())) {
-        // restore_signing() moves the clock up only at start; a vehicle added later signs from
-        // the wall clock, which this vehicle has seen pass already.
-        spdlog::warn(
-            "signing: vehicle {}'s stored signing timestamp is ahead of the wall clock; it may "
-            "reject our frames until the clock catches up (restart mocaplink to sign from the "
-            "stored value)",
-            vehicle.name);
-      }
-    }
-  }
+  restore_signing(slot, vehicle);
   if (recorder_) {
     std::string problem;
     if (!recorder_->add_vehicle(slot, vehicle.name, &problem)) {
@@ -344,6 +326,11 @@ void Daemon::on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& fra
                               core::HostTime t) {
   if (stopping_) return;
   if (recorder_) recorder_->on_mavlink(vehicle, io::unix_now_us(), frame.bytes);
+  const VehicleLink& v = vehicles_[vehicle];
+  if (v.signing && frame.is_signed()) {
+    // The link verified it: our clock must stay above what the vehicle has seen (§7.3).
+    (void)bridge_.raise_signing_timestamp(vehicle, v.link->verified_timestamp_10us());
+  }
   const auto message = mavlink::decode_message(frame);
   if (!message) return;  // unknown id: counted by the parser, nothing for the core
   dispatch(bridge_.on_vehicle_message(

@@ -344,6 +344,13 @@ bool Bridge::set_messages(std::size_t vehicle, const MessageSet& messages) {
   return true;
 }
 
+bool Bridge::raise_signing_timestamp(std::size_t vehicle, std::uint64_t timestamp_10us) {
+  Vehicle* v = live(vehicle);
+  if (v == nullptr) return false;
+  v->sender.raise_signing_timestamp(timestamp_10us);
+  return true;
+}
+
 bool Bridge::set_paused(std::size_t vehicle, bool paused) {
   Vehicle* v = live(vehicle);
   if (v == nullptr) return false;

@@ -4,6 +4,8 @@
 // the snapshot.
 #include "mocaplink/core/bridge.hpp"
 
+#include "mocaplink/mavlink/frame.hpp"
+
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -431,6 +433,42 @@ TEST(BridgeRuntimeVehicles, RemovedVehicleGetsNothingAndItsSlotIsReused) {
   }
   EXPECT_EQ(bridge.slot_count(), 2U);
   EXPECT_EQ(bridge.snapshot(received_at(221)).bodies.size(), 2U);
+}
+
+TEST(BridgeSigning, RaisedTimestampIsTheFloorOfTheNextSignedFrame) {
+  BridgeConfig c = two_vehicles();
+  c.vehicles[0].signing_key = std::array<std::uint8_t, 32>{7};
+  c.vehicles[0].signing_link_id = 1;
+  Bridge bridge = make_bridge(c);
+  // 2023-11-14 22:13:20 UTC → (1'700'000'000 − 1'420'070'400) s in 10 µs units.
+  bridge.set_wall_clock(HostTime{seconds(100)}, 1'700'000'000'000'000);
+  constexpr std::uint64_t kNow10us = 27'992'960'000'000;
+  auto signing_timestamps = [](const BridgeOutput& out, std::size_t vehicle) {
+    std::vector<std::uint64_t> ts;
+    for (const auto& m : out.messages) {
+      const auto frame = mavlink::parse_frame(m.frame.bytes());
+      EXPECT_TRUE(static_cast<bool>(frame));
+      if (m.vehicle != vehicle || !frame) continue;
+      EXPECT_TRUE(frame->signature.has_value());
+      if (frame->signature) ts.push_back(frame->signature->timestamp_10us);
+    }
+    return ts;
+  };
+  auto first = signing_timestamps(bridge.on_tick(HostTime{seconds(100)}), 0);
+  ASSERT_FALSE(first.empty());
+  EXPECT_EQ(first.front(), kNow10us);  // the wall clock
+  // A persisted value (or a signed frame from the vehicle) 10 s ahead of the wall clock.
+  EXPECT_TRUE(bridge.raise_signing_timestamp(0, kNow10us + 1'000'000));
+  EXPECT_TRUE(bridge.raise_signing_timestamp(1, 5));  // unsigned vehicle: no effect, no error
+  EXPECT_FALSE(bridge.raise_signing_timestamp(9, 5));
+  auto next = signing_timestamps(bridge.on_frame(frame_at(1, true, true), received_at(1)), 0);
+  ASSERT_FALSE(next.empty());
+  EXPECT_EQ(next.front(), kNow10us + 1'000'001);
+  // A lower value never lowers it.
+  EXPECT_TRUE(bridge.raise_signing_timestamp(0, 1));
+  next = signing_timestamps(bridge.on_frame(frame_at(3, true, true), received_at(3)), 0);
+  ASSERT_FALSE(next.empty());
+  EXPECT_GT(next.front(), kNow10us + 1'000'001);
 }
 
 TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {

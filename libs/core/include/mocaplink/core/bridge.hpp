@@ -177,6 +177,11 @@ class Bridge {
   bool set_messages(std::size_t vehicle, const MessageSet& messages);
   bool set_paused(std::size_t vehicle, bool paused);
 
+  /// The vehicle's next signed frame uses a timestamp above `timestamp_10us`: its persisted value
+  /// at start, or that of a correctly signed frame it sent us (mavlink-wire.md §7.3). False for
+  /// an empty slot; no effect on a vehicle without a signing key.
+  bool raise_signing_timestamp(std::size_t vehicle, std::uint64_t timestamp_10us);
+
   /// Adds a vehicle, checked as make() checks config.vehicles (the error's field reads
   /// "vehicles[SLOT]..."; a name in use is refused with field "vehicles[SLOT].name"). Returns its
   /// slot. It starts like a configured one: heartbeats from the next on_tick, poses from the next

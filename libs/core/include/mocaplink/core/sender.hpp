@@ -130,6 +130,13 @@ class Sender {
   void send(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
             std::vector<OutgoingMessage>& out);
 
+  /// Raises the signing timestamp so the next signed frame uses at least `timestamp_10us` + 1: a
+  /// persisted value at start, or the timestamp of a correctly signed incoming frame
+  /// (mavlink-wire.md §7.3). No effect without a signing key.
+  void raise_signing_timestamp(std::uint64_t timestamp_10us) {
+    if (signer_) signer_->observe(timestamp_10us);
+  }
+
   // Runtime changes (the dashboard's controls). Take effect at the next frame.
   /// New rate in (0, kMaxSenderRateHz]; false (unchanged) otherwise. Restarts the schedule.
   bool set_rate_hz(double rate_hz);
