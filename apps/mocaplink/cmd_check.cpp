@@ -1,6 +1,7 @@
 // `mocaplink check FILE`: validates a configuration without running anything. Prints every error
 // (stderr, "FILE:LINE:COL: key: message") and exits 1, or prints a summary (stdout) and exits 0.
 // `run` joins this file with issue 5.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include "commands.hpp"
 #include "mocaplink/config/config_error.hpp"
 #include "mocaplink/config/load.hpp"
+#include "mocaplink/sources/source_factory.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -67,6 +69,18 @@ int run_check(const std::string& path) {
     const std::size_t n = result.errors.size();
     std::fprintf(stderr, "%s: %zu error%s\n", path.c_str(), n, n == 1 ? "" : "s");
     return 1;
+  }
+  // A valid file whose source this binary cannot open: `run` would refuse it (a property of the
+  // build, not of the file, so a warning).
+  const std::string scheme = config::to_string(result.config->mocap.source.kind);
+  const auto available = sources::available_source_schemes();
+  if (std::find(available.begin(), available.end(), scheme) == available.end()) {
+    std::string list;
+    for (const auto& a : available) list += (list.empty() ? "" : ", ") + a;
+    std::fprintf(stderr,
+                 "warning: %s: mocap.source: this mocaplink was built without %s:// (available: "
+                 "%s); run will refuse it\n",
+                 path.c_str(), scheme.c_str(), list.c_str());
   }
   print_summary(*result.config);
   return 0;

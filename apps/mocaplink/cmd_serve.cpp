@@ -42,14 +42,14 @@ struct ServeArgs {
   double rate_hz = 100.0;
 };
 
-// `--from sim`, `sim://?…`, `replay:FILE` or `replay://FILE` → the source URL grammar every other
-// command uses (sources::parse_source_url), so the query rules are the same everywhere.
-std::variant<sources::SourceUrl, std::string> parse_from(const std::string& from) {
-  if (from == "sim") return sources::parse_source_url("sim://");
+// `--from sim`, `sim://?…`, `replay:FILE` or `replay://FILE` → the source URL parser every other
+// command uses (config::parse_source_url), so the options and ranges are the same everywhere.
+config::ValueOrError<config::SourceUrl> parse_from(const std::string& from) {
+  if (from == "sim") return config::parse_source_url("sim://");
   if (from.starts_with("replay:") && !from.starts_with("replay://")) {
-    return sources::parse_source_url("replay://" + from.substr(7));
+    return config::parse_source_url("replay://" + from.substr(7));
   }
-  return sources::parse_source_url(from);
+  return config::parse_source_url(from);
 }
 
 // "HOST:PORT", ":PORT", "HOST", "[V6]:PORT" → host, port. nullopt on a bad port.
@@ -113,34 +113,25 @@ int run_serve(const ServeArgs& args) {
   std::unique_ptr<sources::ReplaySource> replay;
 #endif
   const auto from_url = parse_from(args.from);
-  if (const auto* err = std::get_if<std::string>(&from_url)) {
+  if (!from_url) {
     std::fprintf(
         stderr, "mocaplink serve: bad --from '%s' (expected sim, sim://?KEYS or replay:FILE): %s\n",
-        args.from.c_str(), err->c_str());
+        args.from.c_str(), from_url.error().c_str());
     return 1;
   }
-  const auto& source = std::get<sources::SourceUrl>(from_url);
-  if (source.scheme == "sim") {
-    auto config = sources::sim_config_from_query(source.query);
-    if (const auto* err = std::get_if<std::string>(&config)) {
-      std::fprintf(stderr, "mocaplink serve: --from %s: %s\n", args.from.c_str(), err->c_str());
-      return 1;
-    }
-    auto sim = std::get<sources::SimConfig>(config);
+  const config::SourceUrl& source = from_url.value();
+  if (source.kind == config::SourceKind::sim) {
+    sources::SimConfig sim = source.sim;
     sim.rate_hz = args.rate_hz;
     if (const auto err = sources::validate_sim_config(sim); !err.empty()) {
       std::fprintf(stderr, "mocaplink serve: --from %s: %s\n", args.from.c_str(), err.c_str());
       return 1;
     }
     world = std::make_unique<sources::SimWorld>(sim);
-  } else if (source.scheme == "replay") {
+  } else if (source.kind == config::SourceKind::replay) {
 #ifdef MOCAPLINK_SERVE_HAS_REPLAY
-    auto config = sources::replay_config_from_url(source.rest, source.query);
-    if (const auto* err = std::get_if<std::string>(&config)) {
-      std::fprintf(stderr, "mocaplink serve: --from %s: %s\n", args.from.c_str(), err->c_str());
-      return 1;
-    }
-    auto opened = sources::ReplaySource::open(std::get<sources::ReplayConfig>(config), args.from);
+    const sources::ReplayConfig config{source.replay_path, source.replay_speed, source.replay_loop};
+    auto opened = sources::ReplaySource::open(config, args.from);
     if (const auto* err = std::get_if<std::string>(&opened)) {
       std::fprintf(stderr, "mocaplink serve: %s\n", err->c_str());
       return 2;

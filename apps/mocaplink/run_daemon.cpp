@@ -436,7 +436,7 @@ int run_daemon(const DaemonSettings& settings) {
     spdlog::error("configuration: {}: {}", e->field, e->message);
     return kExitBadInput;
   }
-  auto source = sources::make_source(settings.config.mocap.source.text);
+  auto source = sources::make_source(settings.config.mocap.source);
   if (const auto* e = std::get_if<std::string>(&source)) {
     spdlog::error("source {}: {}", settings.config.mocap.source.text, *e);
     return kExitBadInput;

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "mocaplink/config/net_address.hpp"
@@ -43,8 +44,63 @@ std::string read_number(std::string_view key, std::string_view text, double low,
   return {};
 }
 
+/// Reads a whole number in [low, high]; "" on success.
+std::string read_count(std::string_view key, std::string_view text, std::uint64_t low,
+                       std::uint64_t high, std::uint64_t& out) {
+  const auto value = detail::parse_integer(text);
+  if (!value || *value < 0 || static_cast<std::uint64_t>(*value) < low ||
+      static_cast<std::uint64_t>(*value) > high) {
+    return std::string(key) + " must be an integer from " + std::to_string(low) + " to " +
+           std::to_string(high) + ", got " + detail::quoted(text);
+  }
+  out = static_cast<std::uint64_t>(*value);
+  return {};
+}
+
+/// One sim:// option (the key is known: check_query_keys ran first).
+std::string read_sim_option(std::string_view key, std::string_view value, SimOptions& sim) {
+  struct Number {
+    std::string_view key;
+    double SimOptions::*field;
+    double low;
+    double high;
+    bool low_inclusive;
+  };
+  static constexpr std::array<Number, 7> kNumbers{{
+      {"rate_hz", &SimOptions::rate_hz, 0.0, 2000.0, false},
+      {"noise_mm", &SimOptions::noise_mm, 0.0, 1000.0, true},
+      {"noise_deg", &SimOptions::noise_deg, 0.0, 90.0, true},
+      {"occlude", &SimOptions::occlude, 0.0, 1.0, true},
+      {"occlude_s", &SimOptions::occlude_s, 0.0, 60.0, false},
+      {"outliers", &SimOptions::outliers, 0.0, 1.0, true},
+      {"outlier_m", &SimOptions::outlier_m, 0.0, 100.0, false},
+  }};
+  for (const Number& n : kNumbers) {
+    if (key == n.key) return read_number(key, value, n.low, n.high, n.low_inclusive, sim.*n.field);
+  }
+  std::uint64_t count = 0;
+  std::string error;
+  if (key == "drop") {
+    // A probability below 1: at 1 no frame would ever arrive.
+    const auto p = detail::parse_double(value);
+    if (!p || !(*p >= 0.0 && *p < 1.0)) {
+      return "drop must be a probability from 0 to below 1, got " + detail::quoted(value);
+    }
+    sim.drop = *p;
+  } else if (key == "bodies") {
+    error = read_count(key, value, 1, 64, count);
+    if (error.empty()) sim.bodies = static_cast<std::uint32_t>(count);
+  } else if (key == "seed") {
+    error = read_count(key, value, 0, std::numeric_limits<std::int64_t>::max(), sim.seed);
+  } else if (key == "frames") {
+    error = read_count(key, value, 0, std::numeric_limits<std::int64_t>::max(), sim.frames);
+  }
+  return error;
+}
+
 std::string parse_server(SourceUrl& url, std::string_view body, std::uint16_t default_port,
                          bool port_allowed) {
+  if (body.ends_with('/')) body.remove_suffix(1);  // vicon://host/ as a browser would write it
   if (body.find('/') != std::string_view::npos) {
     return scheme_of(url.kind) + " takes no path, got " + detail::quoted(body);
   }
@@ -89,20 +145,15 @@ std::string parse_options(SourceUrl& url, const detail::UrlParts& parts) {
         }
         url.natnet_multicast = std::string(value);
       }
-    } else if (key == "bodies") {
-      const auto n = detail::parse_integer(value);
-      // Bounds as the sim source enforces them (adapters/sources/sim).
-      if (!n || *n < 1 || *n > 64) {
-        error = "bodies must be an integer from 1 to 64, got " + detail::quoted(value);
-      } else {
-        url.sim_bodies = static_cast<std::uint32_t>(*n);
-      }
-    } else if (key == "rate_hz") {
-      error = read_number(key, value, 0.0, 2000.0, false, url.sim_rate_hz);
-    } else if (key == "noise_mm") {
-      error = read_number(key, value, 0.0, 1000.0, true, url.sim_noise_mm);
+    } else if (url.kind == SourceKind::sim) {
+      error = read_sim_option(key, value, url.sim);
     } else if (key == "speed") {
       error = read_number(key, value, 0.0, 1000.0, true, url.replay_speed);
+    } else if (key == "loop") {
+      if (value != "0" && value != "1") {
+        error = "loop must be 0 or 1, got " + detail::quoted(value);
+      }
+      url.replay_loop = value == "1";
     }
     if (!error.empty()) return error;
   }
@@ -157,8 +208,10 @@ std::string parse_body(SourceUrl& url, const detail::UrlParts& parts) {
 std::span<const std::string_view> allowed_options(SourceKind kind) {
   static constexpr std::array<std::string_view, 1> kVicon = {"mode"};
   static constexpr std::array<std::string_view, 2> kNatnet = {"local", "multicast"};
-  static constexpr std::array<std::string_view, 3> kSim = {"bodies", "rate_hz", "noise_mm"};
-  static constexpr std::array<std::string_view, 1> kReplay = {"speed"};
+  static constexpr std::array<std::string_view, 11> kSim = {
+      "bodies",  "rate_hz",   "noise_mm", "noise_deg", "seed",  "drop",
+      "occlude", "occlude_s", "outliers", "outlier_m", "frames"};
+  static constexpr std::array<std::string_view, 2> kReplay = {"speed", "loop"};
   switch (kind) {
     case SourceKind::vicon:
       return kVicon;

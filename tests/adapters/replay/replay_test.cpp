@@ -38,25 +38,6 @@ TEST(ReplaySchedule, NeverSchedulesBackwardsAndLoopsContinue) {
   EXPECT_EQ(schedule.due(at_ms(30)), milliseconds(130));
 }
 
-TEST(ReplayConfig, OptionsAndErrors) {
-  auto ok = replay_config_from_url("dir/run.csv", {{"speed", "2.5"}, {"loop", "1"}});
-  ASSERT_TRUE(std::holds_alternative<ReplayConfig>(ok));
-  EXPECT_EQ(std::get<ReplayConfig>(ok).path, "dir/run.csv");
-  EXPECT_EQ(std::get<ReplayConfig>(ok).speed, 2.5);
-  EXPECT_TRUE(std::get<ReplayConfig>(ok).loop);
-  EXPECT_EQ(std::get<ReplayConfig>(replay_config_from_url("a.csv", {})).speed, 1.0);
-
-  const auto error = [](std::string path, UrlQuery q) {
-    auto r = replay_config_from_url(std::move(path), q);
-    return std::holds_alternative<std::string>(r) ? std::get<std::string>(r) : std::string();
-  };
-  EXPECT_NE(error("a.csv", {{"sped", "1"}}).find("unknown key 'sped'"), std::string::npos);
-  EXPECT_NE(error("a.csv", {{"speed", "-1"}}).find("speed='-1'"), std::string::npos);
-  EXPECT_NE(error("a.csv", {{"speed", "fast"}}).find("speed='fast'"), std::string::npos);
-  EXPECT_NE(error("a.csv", {{"loop", "yes"}}).find("loop='yes'"), std::string::npos);
-  EXPECT_NE(error("", {}).find("no file"), std::string::npos);
-}
-
 std::string write_file(const std::string& name, const std::string& text) {
   const std::string path = testing::TempDir() + "/replay_test_" + name;
   std::ofstream(path, std::ios::binary) << text;

@@ -13,7 +13,7 @@ namespace {
 
 SimConfig noiseless(std::size_t bodies = 3) {
   SimConfig c;
-  c.bodies = bodies;
+  c.bodies = static_cast<std::uint32_t>(bodies);
   c.noise_mm = 0.0;
   c.noise_deg = 0.0;
   return c;
@@ -178,35 +178,18 @@ TEST(SimWorld, DropsOcclusionsAndOutliersFollowTheirProbabilities) {
   }
 }
 
-TEST(SimConfig, QueryKeysParseAndValidate) {
-  const auto ok = sim_config_from_query({{"bodies", "5"},
-                                         {"rate_hz", "100"},
-                                         {"noise_mm", "0"},
-                                         {"seed", "7"},
-                                         {"drop", "0.01"},
-                                         {"occlude", "0.1"},
-                                         {"outliers", "0.001"},
-                                         {"frames", "50"}});
-  ASSERT_TRUE(std::holds_alternative<SimConfig>(ok)) << std::get<std::string>(ok);
-  const auto& c = std::get<SimConfig>(ok);
-  EXPECT_EQ(c.bodies, 5u);
-  EXPECT_EQ(c.rate_hz, 100.0);
-  EXPECT_EQ(c.noise_mm, 0.0);
-  EXPECT_EQ(c.seed, 7u);
-  EXPECT_EQ(c.drop, 0.01);
-  EXPECT_EQ(c.frames, 50u);
-
-  const auto error = [](UrlQuery q) {
-    const auto r = sim_config_from_query(q);
-    return std::holds_alternative<std::string>(r) ? std::get<std::string>(r) : std::string();
-  };
-  EXPECT_NE(error({{"bodys", "3"}}).find("unknown key 'bodys'"), std::string::npos);
-  EXPECT_NE(error({{"bodies", "3x"}}).find("bodies='3x' is not a number"), std::string::npos);
-  EXPECT_NE(error({{"bodies", "0"}}).find("bodies must be"), std::string::npos);
-  EXPECT_NE(error({{"rate_hz", "-5"}}).find("rate_hz must be"), std::string::npos);
-  EXPECT_NE(error({{"rate_hz", "nan"}}).find("not a number"), std::string::npos);
-  EXPECT_NE(error({{"drop", "1"}}).find("drop must be"), std::string::npos);
-  EXPECT_NE(error({{"seed", "-1"}}).find("not a number"), std::string::npos);
+TEST(SimConfig, GuardRefusesConfigsOutsideTheDocumentedRanges) {
+  // URLs are range-checked by config::parse_source_url; this guard is for configs built in code.
+  EXPECT_EQ(validate_sim_config(SimConfig{}), "");
+  SimConfig c;
+  c.bodies = 0;
+  EXPECT_NE(validate_sim_config(c).find("bodies must be"), std::string::npos);
+  c = SimConfig{};
+  c.rate_hz = 0.0;
+  EXPECT_NE(validate_sim_config(c).find("rate_hz must be"), std::string::npos);
+  c = SimConfig{};
+  c.drop = 1.0;
+  EXPECT_NE(validate_sim_config(c).find("drop must be"), std::string::npos);
 }
 
 }  // namespace

@@ -76,11 +76,13 @@ TEST(BodiesCommand, BadUrlIsAClearErrorAndExitOne) {
   const ProcessResult unknown_key =
       run_mocaplink("bodies --source 'sim://?bodys=3' --seconds 1 --json");
   EXPECT_EQ(unknown_key.exit_code, 1);
-  EXPECT_NE(unknown_key.err.find("unknown key 'bodys'"), std::string::npos) << unknown_key.err;
+  EXPECT_NE(unknown_key.err.find("unknown option \"bodys\" for sim://; did you mean \"bodies\"?"),
+            std::string::npos)
+      << unknown_key.err;
   EXPECT_TRUE(unknown_key.out.empty());
   const ProcessResult scheme = run_mocaplink("bodies --source 'nope://x' --seconds 1");
   EXPECT_EQ(scheme.exit_code, 1);
-  EXPECT_NE(scheme.err.find("unknown source scheme 'nope://'"), std::string::npos) << scheme.err;
+  EXPECT_NE(scheme.err.find("unknown source scheme \"nope\""), std::string::npos) << scheme.err;
   const ProcessResult missing =
       run_mocaplink("bodies --source replay:///nonexistent/run.csv --seconds 1");
   EXPECT_EQ(missing.exit_code, 1);

@@ -78,6 +78,25 @@ rate = 50
                 ": 2 errors\n");
 }
 
+TEST(CheckCommand, SourceNotBuiltInIsAWarning) {
+  // A valid file for a source this binary lacks: `run` would refuse it, so check says so.
+  const auto path = write_temp("qtm.toml", R"([mocap]
+source = "qtm://qtm-pc"
+[[vehicle]]
+name = "quad1"
+body = "Quad1"
+link = "udp://192.168.1.21:14540"
+system_id = 1
+profile = "px4"
+)");
+  const auto run = run_check(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(run.exit_code, 0) << run.stderr_text;
+  EXPECT_EQ(run.stderr_text, "warning: " + path +
+                                 ": mocap.source: this mocaplink was built without qtm:// "
+                                 "(available: sim, replay, vicon); run will refuse it\n");
+}
+
 TEST(CheckCommand, SyntaxErrorExitsOne) {
   const auto path = write_temp("syntax.toml", "[mocap\nsource = 1\n");
   const auto run = run_check(path);

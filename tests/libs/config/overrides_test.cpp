@@ -103,7 +103,7 @@ rate_hz = 50
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   const Config& c = *result.config;
   EXPECT_EQ(c.mocap.source.kind, SourceKind::sim);
-  EXPECT_EQ(c.mocap.source.sim_bodies, 2u);
+  EXPECT_EQ(c.mocap.source.sim.bodies, 2u);
   EXPECT_EQ(c.http.listen.port, 0);
   ASSERT_EQ(c.vehicles.size(), 1u);
   EXPECT_EQ(c.vehicles[0].rate_hz, 30.0);

@@ -24,6 +24,13 @@ TEST(SourceUrl, ViconDefaultsAndOptions) {
   EXPECT_EQ(full.value().vicon_mode, ViconStreamMode::client_pull_prefetch);
   EXPECT_EQ(parse_source_url("vicon://h?mode=pull").value().vicon_mode,
             ViconStreamMode::client_pull);
+  EXPECT_EQ(parse_source_url("vicon://h/?mode=pull").value().vicon_mode,
+            ViconStreamMode::client_pull);
+  const auto v6 = parse_source_url("vicon://[::1]:9000");
+  ASSERT_TRUE(v6) << v6.error();
+  EXPECT_EQ(v6.value().host, "::1");
+  EXPECT_EQ(v6.value().port, 9000);
+  EXPECT_EQ(parse_source_url("vicon://h/x").error(), "vicon:// takes no path, got \"h/x\"");
 }
 
 TEST(SourceUrl, EverySchemeWithItsDefaults) {
@@ -52,19 +59,59 @@ TEST(SourceUrl, EverySchemeWithItsDefaults) {
 
   const auto sim = parse_source_url("sim://?bodies=5&rate_hz=100&noise_mm=0");
   ASSERT_TRUE(sim) << sim.error();
-  EXPECT_EQ(sim.value().sim_bodies, 5u);
-  EXPECT_EQ(sim.value().sim_rate_hz, 100.0);
-  EXPECT_EQ(sim.value().sim_noise_mm, 0.0);
+  EXPECT_EQ(sim.value().sim.bodies, 5u);
+  EXPECT_EQ(sim.value().sim.rate_hz, 100.0);
+  EXPECT_EQ(sim.value().sim.noise_mm, 0.0);
   const auto sim_default = parse_source_url("sim://");
-  EXPECT_EQ(sim_default.value().sim_bodies, 3u);
-  EXPECT_EQ(sim_default.value().sim_rate_hz, 200.0);
-  EXPECT_EQ(sim_default.value().sim_noise_mm, 0.3);
+  EXPECT_EQ(sim_default.value().sim.bodies, 3u);
+  EXPECT_EQ(sim_default.value().sim.rate_hz, 200.0);
+  EXPECT_EQ(sim_default.value().sim.noise_mm, 0.3);
 
   const auto replay = parse_source_url("replay://logs/flight 1.csv?speed=2.5");
   ASSERT_TRUE(replay) << replay.error();
   EXPECT_EQ(replay.value().replay_path, "logs/flight 1.csv");
   EXPECT_EQ(replay.value().replay_speed, 2.5);
   EXPECT_EQ(parse_source_url("replay:///abs/f.csv").value().replay_path, "/abs/f.csv");
+}
+
+TEST(SourceUrl, EverySimAndReplayOptionTheSourcesTake) {
+  const auto sim = parse_source_url(
+      "sim://?bodies=64&rate_hz=2000&noise_mm=1000&noise_deg=90&seed=42&drop=0.5&occlude=1"
+      "&occlude_s=60&outliers=1&outlier_m=100&frames=7");
+  ASSERT_TRUE(sim) << sim.error();
+  const SimOptions& s = sim.value().sim;
+  EXPECT_EQ(s.bodies, 64u);
+  EXPECT_EQ(s.rate_hz, 2000.0);
+  EXPECT_EQ(s.noise_mm, 1000.0);
+  EXPECT_EQ(s.noise_deg, 90.0);
+  EXPECT_EQ(s.seed, 42u);
+  EXPECT_EQ(s.drop, 0.5);
+  EXPECT_EQ(s.occlude, 1.0);
+  EXPECT_EQ(s.occlude_s, 60.0);
+  EXPECT_EQ(s.outliers, 1.0);
+  EXPECT_EQ(s.outlier_m, 100.0);
+  EXPECT_EQ(s.frames, 7u);
+  const SimOptions defaults = parse_source_url("sim://").value().sim;
+  EXPECT_EQ(defaults.noise_deg, 0.05);
+  EXPECT_EQ(defaults.seed, 1u);
+  EXPECT_EQ(defaults.occlude_s, 0.5);
+  EXPECT_EQ(defaults.frames, 0u);
+
+  const auto error = [](const char* url) { return parse_source_url(url).error(); };
+  EXPECT_EQ(error("sim://?drop=1"), "drop must be a probability from 0 to below 1, got \"1\"");
+  EXPECT_EQ(error("sim://?occlude_s=0"), "occlude_s must be a number above 0 up to 60, got \"0\"");
+  EXPECT_EQ(error("sim://?seed=-1"),
+            "seed must be an integer from 0 to 9223372036854775807, got \"-1\"");
+  EXPECT_EQ(error("sim://?bodies=65"), "bodies must be an integer from 1 to 64, got \"65\"");
+  EXPECT_EQ(error("sim://?occlud=0.1"),
+            "unknown option \"occlud\" for sim://; did you mean \"occlude\"? (options: bodies, "
+            "rate_hz, noise_mm, noise_deg, seed, drop, occlude, occlude_s, outliers, outlier_m, "
+            "frames)");
+
+  EXPECT_TRUE(parse_source_url("replay://f.csv?loop=1").value().replay_loop);
+  EXPECT_FALSE(parse_source_url("replay://f.csv").value().replay_loop);
+  EXPECT_EQ(parse_source_url("replay://f.csv?speed=0").value().replay_speed, 0.0);
+  EXPECT_EQ(error("replay://f.csv?loop=yes"), "loop must be 0 or 1, got \"yes\"");
 }
 
 TEST(SourceUrl, ErrorsSayWhatIsWrong) {

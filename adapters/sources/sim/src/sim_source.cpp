@@ -35,7 +35,7 @@ void SimSource::run(FrameSink on_frame, StateSink on_state) {
   const SimConfig& config = world_.config();
   if (on_state) {
     std::array<char, 96> detail{};
-    std::snprintf(detail.data(), detail.size(), "simulated, %zu bodies at %g Hz", config.bodies,
+    std::snprintf(detail.data(), detail.size(), "simulated, %u bodies at %g Hz", config.bodies,
                   config.rate_hz);
     on_state(SourceState::connected, detail.data());
   }

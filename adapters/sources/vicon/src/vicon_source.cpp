@@ -317,15 +317,6 @@ class ViconSource::Session {
   SourceState state_ = SourceState::disconnected;
 };
 
-std::variant<std::unique_ptr<ViconSource>, std::string> ViconSource::create(
-    const std::string& url) {
-  auto parsed = parse_vicon_url(url);
-  if (const auto* err = std::get_if<std::string>(&parsed)) return *err;
-  ViconSourceOptions options;
-  options.target = std::get<ViconUrl>(parsed);
-  return std::make_unique<ViconSource>(std::move(options), url);
-}
-
 ViconSource::ViconSource(ViconSourceOptions options, std::string url)
     : options_(std::move(options)), url_(std::move(url)) {}
 

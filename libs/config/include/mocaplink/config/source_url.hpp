@@ -22,6 +22,21 @@ enum class ViconStreamMode { server_push, client_pull_prefetch, client_pull };
 /// "push", "prefetch", "pull".
 [[nodiscard]] const char* to_string(ViconStreamMode mode);
 
+/// What the built-in simulator generates (`sim://` options; defaults are the demo's).
+struct SimOptions {
+  std::uint32_t bodies = 3;  ///< bodies, named Body1..BodyN; 1..64
+  double rate_hz = 200.0;    ///< frame rate; (0, 2000] (Vicon systems run up to ~2 kHz)
+  double noise_mm = 0.3;     ///< white position noise, standard deviation per axis, mm; [0, 1000]
+  double noise_deg = 0.05;   ///< white attitude noise, std about each body axis, degrees; [0, 90]
+  std::uint64_t seed = 1;    ///< same seed + same options → bit-identical frames
+  double drop = 0.0;         ///< probability that a frame is never delivered; [0, 1)
+  double occlude = 0.0;      ///< fraction of time each body is occluded; [0, 1]
+  double occlude_s = 0.5;    ///< occlusions last whole slots of this length, s; (0, 60]
+  double outliers = 0.0;     ///< probability per body and frame of a one-frame jump; [0, 1]
+  double outlier_m = 0.5;    ///< size of such a jump (random direction), m; (0, 100]
+  std::uint64_t frames = 0;  ///< the source finishes after this many frames; 0 = never
+};
+
 /// A parsed source URL. Only the fields documented for `kind` are meaningful; the others keep
 /// their defaults.
 ///
@@ -35,11 +50,13 @@ enum class ViconStreamMode { server_push, client_pull_prefetch, client_pull };
 ///  vrpn       vrpn://[Tracker@]host[:3883]                vrpn_tracker ("" = every tracker),
 ///                                                         host, port (3883)
 ///  qtm        qtm://host[:22223]                          host, port (22223)
-///  sim        sim://[?bodies=3&rate_hz=200&noise_mm=0.3]  sim_bodies, sim_rate_hz, sim_noise_mm
-///  replay     replay://PATH[?speed=1]                     replay_path (as written), replay_speed
+///  sim        sim://[?bodies=3&rate_hz=200&...]           sim (every SimOptions key)
+///  replay     replay://PATH[?speed=1&loop=0]              replay_path (as written), replay_speed,
+///                                                         replay_loop
 ///
-/// The source factory (adapters/sources/factory) opens sources from `text`; the ranges here match
-/// the ones it enforces, so `mocaplink check` rejects what `run` would.
+/// This is the one parser of source URLs: the config checker, `run`, `bodies`, `record` and
+/// `serve --from` all use it (the source factory, adapters/sources/factory, opens sources from
+/// the parsed URL), so `mocaplink check` accepts exactly what `run` does.
 struct SourceUrl {
   SourceKind kind = SourceKind::sim;
   std::string text;  ///< the URL as written, for display
@@ -49,11 +66,10 @@ struct SourceUrl {
   std::string natnet_local_ip;
   std::string natnet_multicast = "239.255.42.99";
   std::string vrpn_tracker;
-  std::uint32_t sim_bodies = 3;  ///< 1..1000 simulated bodies named Body1, Body2, ...
-  double sim_rate_hz = 200.0;    ///< 0 < rate ≤ 2000
-  double sim_noise_mm = 0.3;     ///< 0 ≤ noise ≤ 100, standard deviation per axis
-  std::string replay_path;       ///< relative paths are relative to the working directory
-  double replay_speed = 1.0;     ///< 0 < speed ≤ 100; 1 = real time
+  SimOptions sim;
+  std::string replay_path;    ///< relative paths are relative to the working directory
+  double replay_speed = 1.0;  ///< 0 ≤ speed ≤ 1000; 1 = real time, 0 = as fast as possible
+  bool replay_loop = false;   ///< start again at the end instead of finishing
 };
 
 /// Parses a source URL. Errors name the problem and, for unknown schemes or options, the closest

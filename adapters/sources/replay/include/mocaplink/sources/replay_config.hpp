@@ -1,4 +1,5 @@
-// Configuration and pacing of `replay://file.csv[?speed=1&loop=0]` (DESIGN.md "Source URLs").
+// Configuration and pacing of `replay://file.csv[?speed=1&loop=0]` (DESIGN.md "Source URLs"; the
+// URL itself is parsed by config::parse_source_url).
 #pragma once
 
 #include <optional>
@@ -21,14 +22,6 @@ struct ReplayConfig {
   /// Start again at the end instead of finishing (frame numbers then repeat: a counter restart).
   bool loop = false;
 };
-
-/// Key/value pairs of a URL query, in order (same alias as in sim_config.hpp).
-using UrlQuery = std::vector<std::pair<std::string, std::string>>;
-
-/// Builds a ReplayConfig from the path part and query of a `replay://` URL. Errors name the key:
-/// "replay://: unknown key 'sped' (known: speed, loop)". Pure; thread-safe.
-[[nodiscard]] std::variant<ReplayConfig, std::string> replay_config_from_url(std::string path,
-                                                                             const UrlQuery& query);
 
 /// When each recorded frame is due, as an offset from the start of playback: the first frame at
 /// 0, the others at (capture − first capture) / speed; at speed 0 everything is due at once.

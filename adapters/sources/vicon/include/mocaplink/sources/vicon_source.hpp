@@ -55,9 +55,6 @@ struct ViconCounters {
 
 class ViconSource final : public Source {
  public:
-  /// From a URL (parse_vicon_url); the error names the problem.
-  [[nodiscard]] static std::variant<std::unique_ptr<ViconSource>, std::string> create(
-      const std::string& url);
   ViconSource(ViconSourceOptions options, std::string url);
   ~ViconSource() override;
 
