@@ -6,6 +6,8 @@
 #include <asio/post.hpp>
 #include <asio/write.hpp>
 
+#include "resolve.hpp"
+
 namespace mocaplink::io {
 
 TcpLink::TcpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options)
@@ -21,17 +23,23 @@ std::string TcpLink::url() const {
 }
 
 void TcpLink::async_open(OpenHandler done) {
-  std::error_code ec;
-  asio::ip::tcp::resolver resolver(loop_);
-  const auto endpoints =
-      resolver.resolve(host_, std::to_string(port_), asio::ip::resolver_base::numeric_service, ec);
-  if (ec || endpoints.empty()) {
-    // Report through the loop, never re-entrantly from start().
-    asio::post(loop_, [done = std::move(done), ec, host = host_] {
-      done(ec ? ec : asio::error::host_not_found, "cannot resolve " + host);
-    });
-    return;
-  }
+  detail::resolve_async<asio::ip::tcp>(
+      loop_, host_, port_, liveness(),
+      [this, done = std::move(done)](const std::error_code& error,
+                                     const std::vector<asio::ip::tcp::endpoint>& endpoints) {
+        if (state() == LinkState::closed) return;  // closed while a name was being resolved
+        if (error || endpoints.empty()) {
+          // Report through the loop, never re-entrantly from start().
+          asio::post(loop_, [done, error, host = host_] {
+            done(error ? error : asio::error::host_not_found, "cannot resolve " + host);
+          });
+          return;
+        }
+        connect(endpoints, done);
+      });
+}
+
+void TcpLink::connect(const std::vector<asio::ip::tcp::endpoint>& endpoints, OpenHandler done) {
   close_transport();
   asio::async_connect(socket_, endpoints,
                       [this, done = std::move(done)](const std::error_code& error,

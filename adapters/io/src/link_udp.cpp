@@ -5,6 +5,8 @@
 
 #include <asio/ip/address.hpp>
 
+#include "resolve.hpp"
+
 namespace mocaplink::io {
 namespace {
 
@@ -49,17 +51,21 @@ void UdpLink::start(FrameHandler on_frame, StateHandler on_state) {
 
 void UdpLink::open() {
   if (state() == LinkState::closed) return;
+  detail::resolve_async<asio::ip::udp>(
+      loop_, host_, port_, liveness(),
+      [this](const std::error_code& error, const std::vector<asio::ip::udp::endpoint>& found) {
+        if (state() == LinkState::closed) return;
+        if (error || found.empty()) {
+          schedule_retry("cannot resolve " + host_ + ": " +
+                         (error ? error.message() : "no address"));
+          return;
+        }
+        connect(found.front());
+      });
+}
+
+void UdpLink::connect(const asio::ip::udp::endpoint& remote) {
   std::error_code ec;
-  asio::ip::udp::resolver resolver(loop_);
-  // Resolution is synchronous: it happens once per (re)open, links are usually literals, and a
-  // DNS stall at start-up delays only the start.
-  const auto results =
-      resolver.resolve(host_, std::to_string(port_), asio::ip::resolver_base::numeric_service, ec);
-  if (ec || results.empty()) {
-    schedule_retry("cannot resolve " + host_ + ": " + (ec ? ec.message() : "no address"));
-    return;
-  }
-  const asio::ip::udp::endpoint remote = *results.begin();
   socket_.close(ec);
   socket_.open(remote.protocol(), ec);
   if (!ec) socket_.non_blocking(true, ec);

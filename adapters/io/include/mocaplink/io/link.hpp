@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -123,6 +124,8 @@ class Link {
   void receive_stream(std::span<const std::uint8_t> bytes);
   /// The stream ended (connection closed): a partial frame is counted and discarded.
   void end_stream();
+  /// Expires when the link is destroyed: handlers that may outlive it (name resolution) hold it.
+  [[nodiscard]] std::weak_ptr<void> liveness() const { return alive_; }
   /// Changes the state and tells the StateHandler (only when it changes).
   void set_state(LinkState state, const std::string& detail);
   void set_handlers(FrameHandler on_frame, StateHandler on_state);
@@ -134,6 +137,7 @@ class Link {
   LinkCounters counters_;  // parser field unused here: counters() fills it from parser_
 
  private:
+  std::shared_ptr<char> alive_ = std::make_shared<char>('\0');
   std::optional<mavlink::SignatureVerifier> verifier_;
   mavlink::StreamParser parser_;  // after verifier_: holds a pointer to it
   FrameHandler on_frame_;

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <asio/ip/tcp.hpp>
 
@@ -23,6 +24,7 @@ class TcpLink final : public StreamLink {
 
  private:
   void async_open(OpenHandler done) override;
+  void connect(const std::vector<asio::ip::tcp::endpoint>& endpoints, OpenHandler done);
   void async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) override;
   void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) override;
   void close_transport() noexcept override;

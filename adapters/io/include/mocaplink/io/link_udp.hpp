@@ -40,6 +40,7 @@ class UdpLink final : public Link {
 
  private:
   void open();
+  void connect(const asio::ip::udp::endpoint& remote);
   void schedule_retry(const std::string& why);
   void receive();
 

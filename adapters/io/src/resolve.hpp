@@ -1,0 +1,45 @@
+// Name resolution that never blocks the event loop (internal to adapters/io). An address literal
+// is answered at once; a name is resolved by asio on its own thread (getaddrinfo can stall for
+// seconds when DNS is unreachable, and a stalled loop would stop every vehicle's poses).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include <asio/io_context.hpp>
+#include <asio/ip/address.hpp>
+
+namespace mocaplink::io::detail {
+
+/// Calls `handler(error, endpoints)` with the endpoints of host:port: synchronously for an
+/// address literal, later on the loop for a name. `alive` is the caller's liveness token: when it
+/// has expired by the time a name's answer comes (the caller was destroyed), the handler is not
+/// called. A name that does not resolve gives an error or an empty list.
+template <typename Protocol, typename Handler>
+void resolve_async(asio::io_context& loop, const std::string& host, std::uint16_t port,
+                   std::weak_ptr<void> alive, Handler handler) {
+  using Endpoint = typename Protocol::endpoint;
+  using Resolver = typename Protocol::resolver;
+  std::error_code literal_error;
+  const auto address = asio::ip::make_address(host, literal_error);
+  if (!literal_error) {
+    handler(std::error_code{}, std::vector<Endpoint>{Endpoint(address, port)});
+    return;
+  }
+  auto resolver = std::make_shared<Resolver>(loop);
+  resolver->async_resolve(
+      host, std::to_string(port), Resolver::numeric_service,
+      [resolver, alive = std::move(alive), handler = std::move(handler)](
+          const std::error_code& error, typename Resolver::results_type results) mutable {
+        if (alive.expired()) return;
+        std::vector<Endpoint> endpoints;
+        for (const auto& entry : results) endpoints.push_back(entry.endpoint());
+        handler(error, std::move(endpoints));
+      });
+}
+
+}  // namespace mocaplink::io::detail
