@@ -41,9 +41,10 @@ constexpr auto kFlushPeriod = 1s;
 constexpr auto kSigningSavePeriod = 30s;
 /// How long a stop waits for stream links to write what they queued.
 constexpr auto kLinger = 250ms;
-/// A removed vehicle's link is closed at once but destroyed this much later: by then every
-/// handler it had pending (aborted reads, timers, the linger) has run (io/link.hpp: a link must
-/// outlive its handlers).
+/// A removed vehicle's link is closed at once and destroyed once it reports `closed` (a stream
+/// link lingers up to kLinger first) and this long has passed, through asio::post so that the
+/// destruction queues behind every completion its close already queued (io/link.hpp: a link
+/// must outlive its handlers).
 constexpr auto kRetireAfter = kLinger + 2s;
 /// Frames waiting between the source thread and the loop; ~1 s at 240 Hz. Overflow drops the
 /// oldest (io/bounded_queue.hpp) and is reported in the summary.
@@ -222,6 +223,10 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
     return web::ApiError{422, e->field + ": " + e->message,
                          dot == std::string::npos ? e->field : e->field.substr(dot + 1)};
   }
+  if (std::get<std::size_t>(added) != slot) {  // next_slot() promised it; never expected
+    (void)bridge_.remove_vehicle(std::get<std::size_t>(added));
+    return web::ApiError{500, "internal error: vehicle slot mismatch", ""};
+  }
   if (paused) (void)bridge_.set_paused(slot, true);
   if (slot >= vehicles_.size()) vehicles_.resize(slot + 1);
   vehicles_[slot] = make_vehicle_link(loop_, vehicle);
@@ -264,7 +269,16 @@ std::optional<web::ApiError> Daemon::remove_vehicle(const std::string& name) {
 }
 
 void Daemon::destroy_retired(core::HostTime now) {
-  std::erase_if(retired_, [&](const Retired& r) { return now - r.closed >= kRetireAfter; });
+  for (auto it = retired_.begin(); it != retired_.end();) {
+    if (it->link->state() != io::LinkState::closed || now - it->closed < kRetireAfter) {
+      ++it;
+      continue;
+    }
+    // shared_ptr: asio handlers must be copyable.
+    std::shared_ptr<io::Link> link(std::move(it->link));
+    asio::post(loop_, [link]() mutable { link.reset(); });
+    it = retired_.erase(it);
+  }
 }
 
 void Daemon::start_source() {

@@ -58,14 +58,24 @@ class RunDashboard::Backend final : public web::DashboardBackend {
 
  private:
   // Runs `f` on the loop and waits up to kLoopTimeout; std::nullopt on timeout or when stopping.
+  // A call that timed out never runs later: the caller was told it did not happen (503), so a
+  // change applied behind its back would make a retry fail (409/404).
   template <typename T, typename F>
   std::optional<T> on_loop(F f) {
     if (stopping_) return std::nullopt;
+    enum : int { kPending, kRunning, kAbandoned };
     auto promise = std::make_shared<std::promise<T>>();
+    auto phase = std::make_shared<std::atomic<int>>(kPending);
     auto future = promise->get_future();
-    asio::post(loop_, [promise, f = std::move(f)]() mutable { promise->set_value(f()); });
-    if (future.wait_for(kLoopTimeout) != std::future_status::ready) return std::nullopt;
-    return future.get();
+    asio::post(loop_, [promise, phase, f = std::move(f)]() mutable {
+      int expected = kPending;
+      if (!phase->compare_exchange_strong(expected, kRunning)) return;  // abandoned
+      promise->set_value(f());
+    });
+    if (future.wait_for(kLoopTimeout) == std::future_status::ready) return future.get();
+    int expected = kPending;
+    if (phase->compare_exchange_strong(expected, kAbandoned)) return std::nullopt;
+    return future.get();  // it started just now: its answer is moments away
   }
 
   web::StatusView build_status() {

@@ -47,7 +47,12 @@ bool Recorder::add_vehicle(std::size_t slot, const std::string& name, std::strin
 void Recorder::remove_vehicle(std::size_t slot) {
   if (slot >= tlogs_.size() || !tlogs_[slot]) return;
   tlogs_[slot]->close();
-  if (tlogs_[slot]->failed()) tlog_failed_ = true;
+  if (tlogs_[slot]->failed()) {
+    tlog_failed_ = true;
+    // It may end in half a record: a vehicle of that name added again starts the file anew
+    // rather than appending after it.
+    opened_.erase(tlogs_[slot]->path().stem().string());
+  }
   tlogs_[slot].reset();
   while (!tlogs_.empty() && !tlogs_.back()) tlogs_.pop_back();
 }

@@ -68,6 +68,11 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
   const double dt = previous_time_ ? core::to_seconds(snapshot.time - *previous_time_)
                                    : std::chrono::duration<double>(period_).count();
   previous_time_ = snapshot.time;
+  // Rate limits of subjects quiet for a minute are forgotten: vehicles and bodies come and go
+  // (dashboard), and the map must not grow with every name ever seen.
+  std::erase_if(limits_, [&](const auto& entry) {
+    return snapshot.time - entry.second.last > std::chrono::minutes(1);
+  });
   const auto& st = snapshot.station;
   spdlog::info("{}source {}: {}, {} frames ({:.1f} Hz), {} dropped, {} queue overflows",
                final ? "final: " : "", config_.mocap.source.text,
