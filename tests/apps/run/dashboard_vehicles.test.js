@@ -67,10 +67,11 @@ async function main() {
   await h.waitForLog(run, /dashboard: vehicle rover added/);
   await h.sleep(500);
   const roverRate = await measure(rover, ID.ODOMETRY, 2000);
-  assert.ok(roverRate.hz > 17 && roverRate.hz < 23, `rover ODOMETRY ${roverRate.hz} Hz, asked 20`);
+  // ±25 %: tells 20 Hz from the quad's 50 and from 10 on a loaded 2-core machine.
+  assert.ok(roverRate.hz > 15 && roverRate.hz < 25, `rover ODOMETRY ${roverRate.hz} Hz, asked 20`);
   assert.deepEqual([...roverRate.sysids], [2]);
   assert.ok(rover.ofId(ID.HEARTBEAT).length > 0, 'no HEARTBEAT to the added vehicle');
-  const quadRate = await measure(quad, ID.ODOMETRY, 1000);
+  const quadRate = await measure(quad, ID.ODOMETRY, 2000);
   assert.ok(quadRate.hz > 40 && quadRate.hz < 60, `quad ODOMETRY ${quadRate.hz} Hz`);
   assert.deepEqual([...quadRate.sysids], [1]);
   // Body2's pose, not Body1's: the sim's Body2 and Body1 are never at the same place.
@@ -99,7 +100,7 @@ async function main() {
   assert.equal((await api('PATCH', '/api/vehicles/rover', { rate_hz: 10 })).status, 200);
   await h.sleep(300);
   const slower = await measure(rover, ID.ODOMETRY, 2000);
-  assert.ok(slower.hz > 8 && slower.hz < 12, `rover ODOMETRY ${slower.hz} Hz, patched to 10`);
+  assert.ok(slower.hz > 7.5 && slower.hz < 12.5, `rover ODOMETRY ${slower.hz} Hz, patched to 10`);
 
   // Remove: 204, then nothing at all reaches its link; the quad goes on.
   const removed = await api('DELETE', '/api/vehicles/rover');
@@ -112,14 +113,14 @@ async function main() {
   assert.equal((await api('GET', '/api/vehicles/rover')).status, 404);
   assert.equal((await api('DELETE', '/api/vehicles/rover')).status, 404);
   assert.deepEqual(await names(), ['quad']);
-  assert.ok((await measure(quad, ID.ODOMETRY, 1000)).hz > 40, 'the quad stopped with the rover');
+  assert.ok((await measure(quad, ID.ODOMETRY, 1000)).hz > 30, 'the quad stopped with the rover');
 
   // The same name again: a fresh start on the same link; its .tlog continues.
   const readdedAt = Date.now();
   assert.equal((await api('POST', '/api/vehicles', roverSpec)).status, 201);
   await h.sleep(300);
-  const again = await measure(rover, ID.ODOMETRY, 1500);
-  assert.ok(again.hz > 17 && again.hz < 23, `re-added rover ODOMETRY ${again.hz} Hz`);
+  const again = await measure(rover, ID.ODOMETRY, 2000);
+  assert.ok(again.hz > 15 && again.hz < 25, `re-added rover ODOMETRY ${again.hz} Hz`);
 
   await h.stop(run);
   assert.match(run.stderr, /dashboard: vehicle rover removed/);
