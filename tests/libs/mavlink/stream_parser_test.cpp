@@ -198,7 +198,7 @@ TEST(StreamParser, SeveralFramesPerDatagramAndTruncatedTail) {
   const auto on_frame = [&](const FrameView& f) { seqs.push_back(f.seq); };
   parser.feed_datagram(datagram, 0, on_frame);
   EXPECT_EQ(seqs, (std::vector<std::uint8_t>{0, 1, 2}));
-  datagram.resize(datagram.size() - 3);  // cut the last frame
+  datagram.erase(datagram.end() - 3, datagram.end());  // cut the last frame
   parser.feed_datagram(datagram, 0, on_frame);
   EXPECT_EQ(seqs, (std::vector<std::uint8_t>{0, 1, 2, 0, 1}));
   EXPECT_EQ(parser.counters().truncated_tail, 1u);
