@@ -63,8 +63,8 @@ struct VehicleKey {
 /// Adds one vehicle to a valid Config, with exactly the checks a [[vehicle]] table gets: keys and
 /// their values, required keys, defaults from [mocap], the origin the profile needs, a name not in
 /// use and a system id not in use on the same link. On success the new Config's last vehicle is
-/// the added one; warnings about it (a shared link) come with it. Errors and warnings are located at
-/// `origin` (line 0) and their key is the bare [[vehicle]] key ("system_id"), or "" when the
+/// the added one; warnings about it (a shared link) come with it. Errors and warnings are located
+/// at `origin` (line 0) and their key is the bare [[vehicle]] key ("system_id"), or "" when the
 /// problem is not one key.
 ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
                          std::string_view origin);
