@@ -81,7 +81,11 @@ class DashboardServer::Impl {
                                                 httplib::Response& res) const;
   std::shared_ptr<const Snapshot> snapshot();
   void invalidate_snapshot();
-  void respond_vehicle(httplib::Response& res, int status, const std::string& name);
+  /// The vehicle as in the status. After a change that succeeded (`changed`), a status that does
+  /// not list it yet (the daemon answered with its previous picture) gives {"name": NAME} with
+  /// the success status, never a 404 that would deny the change.
+  void respond_vehicle(httplib::Response& res, int status, const std::string& name,
+                       bool changed = false);
   void apply_and_respond(httplib::Response& res, const VehicleChange& change,
                          const std::string& name, int success_status);
   void serve_events(httplib::Response& res);
@@ -221,13 +225,17 @@ void DashboardServer::Impl::invalidate_snapshot() {
 }
 
 void DashboardServer::Impl::respond_vehicle(httplib::Response& res, int status,
-                                            const std::string& name) {
+                                            const std::string& name, bool changed) {
   const auto snap = snapshot();
   for (const json& vehicle : snap->status.at("vehicles")) {
     if (vehicle.at("name") == name) {
       send_json(res, status, vehicle);
       return;
     }
+  }
+  if (changed) {
+    send_json(res, status, json{{"name", name}});
+    return;
   }
   send_error(res, ApiError{404, "no vehicle named \"" + name + "\"", ""});
 }
@@ -244,7 +252,7 @@ void DashboardServer::Impl::apply_and_respond(httplib::Response& res, const Vehi
     res.status = 204;
     return;
   }
-  respond_vehicle(res, success_status, name);
+  respond_vehicle(res, success_status, name, true);
 }
 
 void DashboardServer::Impl::serve_events(httplib::Response& res) {

@@ -1,5 +1,7 @@
 // POST / PATCH / DELETE /api/vehicles over real HTTP: every mutation, every validation error, and
 // that a refused request changes nothing.
+#include <chrono>
+#include <thread>
 #include <variant>
 
 #include "api_fixture.hpp"
@@ -44,6 +46,21 @@ TEST_F(ApiTest, PostAddsAVehicleAndReturnsIt) {
   const json vehicles = body_json(get("/api/vehicles"));
   ASSERT_EQ(vehicles.size(), 3U);  // the change shows at once (no stale cached status)
   EXPECT_EQ(vehicles[2]["name"], "hexa");
+}
+
+TEST_F(ApiTest, PostThatSucceededIsNeverAnsweredAs404) {
+  // The daemon applied the add but its status still shows the previous picture (slow loop).
+  backend_.set_status_frozen(true);
+  auto res = post("/api/vehicles", kNewVehicle.dump());
+  ASSERT_TRUE(res);
+  ASSERT_EQ(res->status, 201) << res->body;
+  EXPECT_EQ(res->get_header_value("Location"), "/api/vehicles/hexa");
+  EXPECT_EQ(body_json(res), (json{{"name", "hexa"}}));
+  ASSERT_EQ(backend_.applied().size(), 1U);
+  backend_.set_status_frozen(false);
+  // Once the shared snapshot (kept for half an event period) is renewed, it is there.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(get("/api/vehicles/hexa")->status, 200);
 }
 
 TEST_F(ApiTest, PostDefaultsFollowTheConfigFile) {

@@ -88,9 +88,17 @@ void FakeBackend::accrue(Vehicle& vehicle) const {
   v.send_rate_hz = v.paused || v.messages.empty() ? 0.0 : v.rate_hz * 0.998;
 }
 
+void FakeBackend::set_status_frozen(bool frozen) {
+  std::optional<StatusView> picture;
+  if (frozen) picture = status();
+  std::lock_guard lock(mutex_);
+  frozen_ = std::move(picture);
+}
+
 StatusView FakeBackend::status() {
   std::lock_guard lock(mutex_);
   ++status_calls_;
+  if (frozen_) return *frozen_;
   StatusView s;
   s.uptime_s = t_s_;
   s.station.source = "sim://?bodies=3";

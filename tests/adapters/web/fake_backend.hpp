@@ -25,6 +25,9 @@ class FakeBackend final : public DashboardBackend {
   void set_time(double t_s);
   /// Every change applied successfully, in order (refused ones are not recorded).
   std::vector<VehicleChange> applied() const;
+  /// While frozen, status() keeps answering the picture of the moment it froze (as the daemon
+  /// does when its loop is too slow to answer); changes are still applied.
+  void set_status_frozen(bool frozen);
   /// Number of status() calls so far.
   int status_calls() const;
 
@@ -41,6 +44,7 @@ class FakeBackend final : public DashboardBackend {
   int status_calls_ = 0;
   std::vector<Vehicle> vehicles_;
   std::vector<VehicleChange> applied_;
+  std::optional<StatusView> frozen_;
 };
 
 /// The made-up position of body `index` (0, 1, 2) at time t_s, in metres (source world, z up).
