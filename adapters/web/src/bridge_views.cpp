@@ -117,20 +117,6 @@ LinkState link_state(core::LinkState state, bool down) {
   return state == core::LinkState::alive ? LinkState::up : LinkState::silent;
 }
 
-OriginState origin_state(core::OriginState state) {
-  switch (state) {
-    case core::OriginState::not_needed:
-      return OriginState::not_needed;
-    case core::OriginState::sending:
-      return OriginState::sending;
-    case core::OriginState::confirmed:
-      return OriginState::confirmed;
-    case core::OriginState::conflict:
-      return OriginState::conflict;
-  }
-  return OriginState::not_needed;
-}
-
 AgreementVerdict verdict(core::AgreementVerdict v) {
   switch (v) {
     case core::AgreementVerdict::unknown:
@@ -249,7 +235,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     } else {
       v.timesync.state = TimesyncState::waiting;
     }
-    v.origin = origin_state(state.origin);
+    v.origin = state.origin;
     v.agreement = AgreementView{verdict(state.agreement.verdict), state.agreement.yaw_offset_deg,
                                 state.agreement.position_offset_m};
     status.vehicles.push_back(std::move(v));

@@ -40,20 +40,6 @@ std::string_view to_string(TimesyncState state) {
   return "off";
 }
 
-std::string_view to_string(OriginState state) {
-  switch (state) {
-    case OriginState::not_needed:
-      return "not_needed";
-    case OriginState::sending:
-      return "sending";
-    case OriginState::confirmed:
-      return "confirmed";
-    case OriginState::conflict:
-      return "conflict";
-  }
-  return "not_needed";
-}
-
 std::string_view to_string(AgreementVerdict verdict) {
   switch (verdict) {
     case AgreementVerdict::unknown:

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/vehicle_state.hpp"
 
 namespace mocaplink::web {
 
@@ -67,14 +68,9 @@ enum class TimesyncState {
 };
 [[nodiscard]] std::string_view to_string(TimesyncState state);
 
-/// SET_GPS_GLOBAL_ORIGIN handshake (sent until the vehicle's GPS_GLOBAL_ORIGIN matches).
-enum class OriginState {
-  not_needed,  ///< the profile sends no origin
-  sending,     ///< not confirmed yet: still sending SET_GPS_GLOBAL_ORIGIN
-  confirmed,   ///< the vehicle reported the same origin
-  conflict,    ///< ArduPilot reported another origin; it cannot change until reboot (stopped)
-};
-[[nodiscard]] std::string_view to_string(OriginState state);
+/// SET_GPS_GLOBAL_ORIGIN handshake: the core's state as is (not_needed, sending, confirmed,
+/// conflict; core::to_string spells it for the JSON).
+using OriginState = core::OriginState;
 
 /// The agreement check: the vehicle's own ATTITUDE / LOCAL_POSITION_NED against the mocap estimate.
 enum class AgreementVerdict {
