@@ -1,7 +1,8 @@
 // Fuzz target: configuration text → parse_config, and every line of the input as a --vehicle SPEC,
-// --source URL, --http ADDR and link URL (libs/config). Beyond "no crash", it checks the library's
-// contract: a Config exists exactly when there are no errors, every error has a message and a
-// sane position, and every accepted Config satisfies the documented ranges and rules.
+// --source URL, --http ADDR and link URL, and as a `key=value` of a vehicle added at run time
+// (add_vehicle, values typed as JSON would give them) (libs/config). Beyond "no crash", it checks
+// the library's contract: a Config exists exactly when there are no errors, every error has a
+// message and a sane position, and every accepted Config satisfies the documented ranges and rules.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -42,6 +43,36 @@ void check_config(const Config& c) {
   if (!mocaplink::config::is_loopback(c.http.listen.host)) require(c.http.token.size() >= 16);
 }
 
+/// "key=value" as a typed VehicleKey: an integer, a number, true/false, a '+'-joined list, or text.
+mocaplink::config::VehicleKey typed_key(const std::string& line) {
+  const auto eq = line.find('=');
+  mocaplink::config::VehicleKey key{line.substr(0, eq), std::string()};
+  const std::string value = eq == std::string::npos ? std::string() : line.substr(eq + 1);
+  char* end = nullptr;
+  const long long integer = std::strtoll(value.c_str(), &end, 10);
+  if (!value.empty() && *end == '\0') {
+    key.value = static_cast<std::int64_t>(integer);
+    return key;
+  }
+  const double number = std::strtod(value.c_str(), &end);
+  if (!value.empty() && *end == '\0') {
+    key.value = number;
+  } else if (value == "true" || value == "false") {
+    key.value = value == "true";
+  } else if (value.find('+') != std::string::npos) {
+    std::vector<std::string> items;
+    for (std::size_t at = 0; at <= value.size();) {
+      const auto plus = std::min(value.find('+', at), value.size());
+      items.push_back(value.substr(at, plus - at));
+      at = plus + 1;
+    }
+    key.value = items;
+  } else {
+    key.value = value;
+  }
+  return key;
+}
+
 void check_result(const ConfigResult& result) {
   require(result.ok() == result.errors.empty());
   for (const auto& e : result.errors)
@@ -57,6 +88,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   // The same bytes as command-line options, one per line (at most 8 lines).
   mocaplink::config::CommandLineOverrides overrides;
+  std::vector<mocaplink::config::VehicleKey> keys;
   std::size_t start = 0;
   while (start < text.size() && overrides.vehicles.size() < 8) {
     const auto end = std::min(text.find('\n', start), text.size());
@@ -65,8 +97,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)mocaplink::config::parse_link_url(line);
     (void)mocaplink::config::parse_north(line);
     overrides.vehicles.push_back(line);
+    keys.push_back(typed_key(line));
     start = end + 1;
   }
+  const auto added = mocaplink::config::add_vehicle(mocaplink::config::demo_config(), keys, "fuzz");
+  check_result(added);
+  if (added.config) require(added.config->vehicles.size() == 2);
   if (!overrides.vehicles.empty()) {
     overrides.source = overrides.vehicles.front();
     overrides.http = overrides.vehicles.back();
