@@ -7,6 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mocaplink/text/did_you_mean.hpp"
+#include "mocaplink/text/hex.hpp"
+
 namespace mocaplink::web {
 namespace {
 
@@ -16,42 +19,14 @@ ApiError invalid(std::string field, std::string message) {
   return ApiError{422, field + ": " + message, field};
 }
 
-// Levenshtein distance, for "did you mean" on unknown keys (keys are short).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 std::optional<ApiError> check_keys(const json& object, const std::vector<std::string_view>& known) {
   for (const auto& [key, value] : object.items()) {
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
     std::string message = "unknown key";
-    std::string_view best;
-    std::size_t best_distance = 3;  // suggest only close spellings
-    for (std::string_view candidate : known) {
-      std::size_t d = edit_distance(key, candidate);
-      // "rate" for "rate_hz": a prefix is the likeliest intent whatever the distance.
-      if (candidate.substr(0, key.size()) == key || key.substr(0, candidate.size()) == candidate) {
-        d = std::min<std::size_t>(d, 1);
-      }
-      if (d < best_distance) {
-        best_distance = d;
-        best = candidate;
-      }
-    }
-    if (!best.empty())
-      message += " (did you mean \"" + std::string(best) + "\"?)";
-    else {
+    // The same closeness rule as the config file's keys ("rate" → "rate_hz" by prefix).
+    if (const auto best = text::closest_match(key, known)) {
+      message += " (did you mean \"" + std::string(*best) + "\"?)";
+    } else {
       message += "; expected one of:";
       for (std::string_view candidate : known) message += " " + std::string(candidate);
     }
@@ -139,12 +114,6 @@ ApiResult<bool> get_paused(const json& object) {
   return get_bool(object, "paused");
 }
 
-bool is_hex(std::string_view s) {
-  return std::all_of(s.begin(), s.end(), [](char c) {
-    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
-  });
-}
-
 }  // namespace
 
 const std::vector<std::string>& profile_names() {
@@ -227,7 +196,8 @@ ApiResult<VehicleSpec> parse_vehicle_spec(std::string_view json_text) {
   if (auto error = read_optional(object, "rate_hz", get_rate, spec.rate_hz)) return *error;
   if (object.contains("signing_key")) {
     auto key = get_string(object, "signing_key", 64);
-    if (!key.ok() || !(key.value().empty() || (key.value().size() == 64 && is_hex(key.value())))) {
+    if (!key.ok() ||
+        !(key.value().empty() || (key.value().size() == 64 && text::is_hex(key.value())))) {
       return invalid("signing_key", "must be \"\" or 64 hex digits");
     }
     spec.signing_key = key.value();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "mocaplink/text/hex.hpp"
 #include "text_util.hpp"
 
 namespace mocaplink::config {
@@ -10,9 +11,6 @@ namespace {
 
 bool is_digit(char c) {
   return c >= '0' && c <= '9';
-}
-bool is_hex(char c) {
-  return is_digit(c) || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
 }
 bool is_alnum(char c) {
   return is_digit(c) || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
@@ -22,7 +20,7 @@ bool is_ipv6_literal(std::string_view host) {
   // Syntax check only: hex groups, ':' separators, at most one "::", an optional dotted IPv4 tail.
   if (host.size() < 2 || host.size() > 45) return false;
   if (!std::all_of(host.begin(), host.end(),
-                   [](char c) { return is_hex(c) || c == ':' || c == '.'; })) {
+                   [](char c) { return text::is_hex_digit(c) || c == ':' || c == '.'; })) {
     return false;
   }
   const auto first = host.find("::");

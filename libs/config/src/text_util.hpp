@@ -1,5 +1,5 @@
-// Small text helpers shared by the config parsers: "did you mean" suggestions, number formatting,
-// lists of names. Internal to libs/config.
+// Small text helpers shared by the config parsers: number formatting, lists of names, and the
+// "did you mean" suggestions of mocaplink::text. Internal to libs/config.
 #pragma once
 
 #include <cstddef>
@@ -9,21 +9,12 @@
 #include <string>
 #include <string_view>
 
+#include "mocaplink/text/did_you_mean.hpp"
+
 namespace mocaplink::config::detail {
 
-/// Optimal-string-alignment distance (insertions, deletions, substitutions and adjacent
-/// transpositions each cost 1), ASCII case-insensitive.
-[[nodiscard]] std::size_t edit_distance(std::string_view a, std::string_view b);
-
-/// The candidate closest to `word`, if close enough to be a plausible typo: within 1 edit for
-/// words of up to 4 characters, 2 up to 8, 3 beyond; or a prefix of it (or it of the candidate)
-/// of at least 3 characters. Ties go to the earlier candidate.
-[[nodiscard]] std::optional<std::string_view> closest_match(
-    std::string_view word, std::span<const std::string_view> candidates);
-
-/// `; did you mean "x"?` or "" when nothing is close.
-[[nodiscard]] std::string did_you_mean(std::string_view word,
-                                       std::span<const std::string_view> candidates);
+using text::closest_match;
+using text::did_you_mean;
 
 /// "a, b, c".
 [[nodiscard]] std::string join(std::span<const std::string_view> words,

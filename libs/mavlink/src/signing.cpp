@@ -12,18 +12,12 @@
 #include <cstring>
 
 #include "mocaplink/mavlink/frame.hpp"
+#include "mocaplink/text/hex.hpp"
 
 namespace mocaplink::mavlink {
 namespace {
 
 constexpr std::uint32_t kRadioStatusId = 109;  // RADIO_STATUS, common.xml
-
-int hex_value(char c) noexcept {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
 
 }  // namespace
 
@@ -45,8 +39,8 @@ std::optional<SigningKey> SigningKey::from_hex(std::string_view hex) noexcept {
   if (hex.size() != 64) return std::nullopt;
   std::array<std::uint8_t, 32> secret{};
   for (std::size_t i = 0; i < secret.size(); ++i) {
-    const int hi = hex_value(hex[2 * i]);
-    const int lo = hex_value(hex[2 * i + 1]);
+    const int hi = text::hex_value(hex[2 * i]);
+    const int lo = text::hex_value(hex[2 * i + 1]);
     if (hi < 0 || lo < 0) return std::nullopt;
     secret[i] = static_cast<std::uint8_t>(hi * 16 + lo);
   }
