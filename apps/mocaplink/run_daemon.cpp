@@ -55,19 +55,6 @@ struct QueuedFrame {
   core::HostTime received;
 };
 
-/// The signing timestamp of a signed MAVLink 2 frame we encoded (mavlink-wire.md §7.1), if any.
-std::optional<std::uint64_t> signing_timestamp(std::span<const std::uint8_t> frame) {
-  if (frame.size() < mavlink::kHeaderSizeV2 + mavlink::kChecksumSize + mavlink::kSignatureSize ||
-      frame[0] != mavlink::kMagicV2 || (frame[2] & mavlink::kIncompatSigned) == 0) {
-    return std::nullopt;
-  }
-  const std::size_t at = mavlink::kHeaderSizeV2 + frame[1] + mavlink::kChecksumSize + 1;
-  if (at + 6 > frame.size()) return std::nullopt;
-  std::uint64_t ts = 0;
-  for (std::size_t i = 0; i < 6; ++i) ts |= std::uint64_t{frame[at + i]} << (8 * i);
-  return ts;
-}
-
 class Daemon {
  public:
   Daemon(const DaemonSettings& settings, core::Bridge bridge,
@@ -330,7 +317,9 @@ void Daemon::dispatch(core::BridgeOutput&& out) {
     (void)v.link->send(bytes);
     if (recording) recorder_->on_mavlink(m.vehicle, unix_us, bytes);
     if (v.signing) {
-      if (const auto ts = signing_timestamp(bytes)) v.last_signing_10us = *ts;
+      // The signature block of the frame we encoded (mavlink-wire.md §7.1), read by the codec.
+      const auto view = mavlink::parse_frame(bytes);
+      if (view && view->signature) v.last_signing_10us = view->signature->timestamp_10us;
     }
   }
   for (const auto& e : out.events) summary_.on_event(e, io::host_now());
