@@ -13,7 +13,6 @@
 // the bound one, so --listen 127.0.0.1:0 works for scripts). Runs until SIGINT/SIGTERM (exit 0).
 // Exit 1: bad arguments; exit 2: cannot listen or cannot read the recording.
 #include <charconv>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -21,9 +20,10 @@
 #include <utility>
 #include <variant>
 
-#include <pthread.h>
+#include <asio/io_context.hpp>
 
 #include "commands.hpp"
+#include "mocaplink/io/signals.hpp"
 #include "mocaplink/sources/sim_world.hpp"
 #include "mocaplink/sources/source_factory.hpp"
 #include "mocaplink/sources/vicon_server.hpp"
@@ -78,17 +78,6 @@ std::optional<std::pair<std::string, std::uint16_t>> parse_listen(const std::str
     }
   }
   return std::make_pair(host, static_cast<std::uint16_t>(port));
-}
-
-// Blocks SIGINT/SIGTERM in this thread (and so in every thread started afterwards) and returns
-// the set, for sigwait once everything runs.
-sigset_t block_stop_signals() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  return set;
 }
 
 int run_serve(const ServeArgs& args) {
@@ -147,7 +136,9 @@ int run_serve(const ServeArgs& args) {
     return 1;
   }
 
-  const sigset_t stop_signals = block_stop_signals();
+  // SIGINT/SIGTERM from here on stop the server cleanly (a signal during start-up waits for run).
+  asio::io_context loop;
+  io::StopSignals stop_signals(loop, [&loop](int, int) { loop.stop(); });
   sources::ViconServerOptions options;
   options.listen_host = listen->first;
   options.port = listen->second;
@@ -181,8 +172,7 @@ int run_serve(const ServeArgs& args) {
               static_cast<unsigned>(server.port()), args.from.c_str(), args.rate_hz);
   std::fflush(stdout);
 
-  int signal_number = 0;
-  sigwait(&stop_signals, &signal_number);
+  loop.run();  // until SIGINT/SIGTERM
 #ifdef MOCAPLINK_SERVE_HAS_REPLAY
   if (replay) replay->stop();
 #endif

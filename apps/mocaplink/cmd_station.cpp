@@ -5,10 +5,7 @@
 // (nothing started); 2 no frame ever arrived (source unreachable, silent or empty) or the
 // recording could not be written.
 #include <unistd.h>
-#include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -18,11 +15,15 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <asio/io_context.hpp>
+#include <asio/post.hpp>
+#include <asio/steady_timer.hpp>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "mocaplink/core/station.hpp"
 #include "mocaplink/io/clock.hpp"
+#include "mocaplink/io/signals.hpp"
 #include "mocaplink/sources/source_factory.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
@@ -32,22 +33,17 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using sources::SourceState;
 
-std::atomic<bool> g_interrupted{false};  // set by SIGINT/SIGTERM; async-signal-safe
-
-extern "C" void on_signal(int) {
-  g_interrupted.store(true);
-}
-
 /// A started Source feeding a Station, thread-safe: the source's thread calls in, the main thread
-/// waits and takes snapshots. `also` sees every frame after the Station (record writes them).
+/// waits (on its own event loop, which also takes SIGINT/SIGTERM) and takes snapshots. `also` sees
+/// every frame after the Station (record writes them).
 class StationSession {
  public:
   using FrameHook = std::function<void(const core::MocapFrame&)>;
 
   StationSession(std::unique_ptr<sources::Source> source, FrameHook also)
-      : source_(std::move(source)), also_(std::move(also)) {
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+      : source_(std::move(source)),
+        also_(std::move(also)),
+        signals_(loop_, [this](int, int) { loop_.stop(); }) {
     source_->start(
         [this](core::MocapFrame frame, core::HostTime received) {
           const std::lock_guard lock(mutex_);
@@ -61,7 +57,7 @@ class StationSession {
             detail_ = detail;
             station_.on_connection(state == SourceState::connected);
           }
-          changed_.notify_all();
+          if (state == SourceState::finished) asio::post(loop_, [this] { loop_.stop(); });
         });
   }
   ~StationSession() { source_->stop(); }
@@ -75,15 +71,26 @@ class StationSession {
     const auto start = Clock::now();
     const auto end = limit ? start + std::chrono::duration_cast<Clock::duration>(*limit)
                            : Clock::time_point::max();
-    while (!g_interrupted.load()) {
-      const auto next = std::min(end, Clock::now() + period);
-      {
-        std::unique_lock lock(mutex_);
-        if (changed_.wait_until(lock, next, [this] { return done_locked(); })) return;
-      }
-      if (Clock::now() >= end) return;
-      if (tick) tick();
+    {
+      const std::lock_guard lock(mutex_);
+      if (done_locked()) return;
     }
+    asio::steady_timer timer(loop_);
+    std::function<void()> wait = [&] {
+      timer.expires_at(std::min(end, Clock::now() + period));
+      timer.async_wait([&](const std::error_code& error) {
+        if (error) return;
+        if (Clock::now() >= end) {
+          loop_.stop();
+          return;
+        }
+        if (tick) tick();
+        wait();
+      });
+    };
+    wait();
+    loop_.run();  // until the limit, `finished` (posted by the source's thread) or a signal
+    timer.cancel();
   }
 
   [[nodiscard]] core::StationSnapshot snapshot() {
@@ -102,8 +109,9 @@ class StationSession {
 
   std::unique_ptr<sources::Source> source_;
   FrameHook also_;
+  asio::io_context loop_;
+  io::StopSignals signals_;
   std::mutex mutex_;
-  std::condition_variable changed_;
   core::Station station_;
   SourceState state_ = SourceState::connecting;
   std::string detail_;
