@@ -3,12 +3,12 @@
 //
 // Config strings (the `[mocap]` table: `up`, `north`, `body_forward`, `body_up`):
 //   signed axis   "+x" "-x" "+y" "-y" "+z" "-z"
-//   up            a signed axis of the mocap world frame that points up (Vicon/QTM "+z", Motive
-//   "+y") north         a signed horizontal world axis, or "angle:DEG": north is the reference axis
-//   rotated
-//                 by DEG degrees about `up` (right-hand rule: counter-clockwise seen from above).
-//                 The reference axis is +x, or +y when up is +-x. "angle:0" with up "+z" equals
-//                 "+x"; "angle:90" with up "+z" equals "+y".
+//   up            a signed axis of the mocap world frame that points up (Vicon/QTM "+z",
+//                 Motive "+y")
+//   north         a signed horizontal world axis, or "angle:DEG": north is the reference axis
+//                 rotated by DEG degrees about `up` (right-hand rule: counter-clockwise seen from
+//                 above). The reference axis is +x, or +y when up is +-x. "angle:0" with up "+z"
+//                 equals "+x"; "angle:90" with up "+z" equals "+y".
 //   body_forward  the rigid body's axis that points out of the nose (default "+x")
 //   body_up       the rigid body's axis that points up out of the top (default "+z")
 // The defaults are Vicon-style FLU body axes, mapped to FRD.
