@@ -1,7 +1,9 @@
 // Geodesy against an independent oracle: PROJ's cct (Debian proj-bin) with a topocentric pipeline
-// (geodetic -> geocentric "cart" -> local ENU "topocentric"), forward and inverse, at several
-// origins. Agreement must be better than 1 mm for points within 1 km. Starts cct processes, hence
-// the conformance label; MOCAPLINK_CCT is the path CMake's find_program found.
+// (geodetic -> geocentric "cart" -> local ENU "topocentric" -> NED by PROJ's own "axisswap"
+// +order=2,1,-3), forward and inverse, at several origins. Both sides speak NED: our NED↔ENU swap
+// is never applied to PROJ's numbers, so a wrong swap on our side shows up as a disagreement.
+// Agreement must be better than 1 mm for points within 1 km. Starts cct processes, hence the
+// conformance label; MOCAPLINK_CCT is the path CMake's find_program found.
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -35,7 +37,8 @@ std::vector<Eigen::Vector3d> run_cct(const GeodeticPosition& o, bool inverse,
   for (const auto& p : in) cmd << p.x() << ' ' << p.y() << ' ' << p.z() << "\\n";
   cmd << "' | '" << MOCAPLINK_CCT << "' -d 12" << (inverse ? " -I" : "")
       << " +proj=pipeline +step +proj=cart +ellps=WGS84 +step +proj=topocentric +ellps=WGS84"
-      << " +lat_0=" << o.latitude_deg << " +lon_0=" << o.longitude_deg << " +h_0=" << o.altitude_m;
+      << " +lat_0=" << o.latitude_deg << " +lon_0=" << o.longitude_deg << " +h_0=" << o.altitude_m
+      << " +step +proj=axisswap +order=2,1,-3";  // E N U -> N E D
   std::vector<Eigen::Vector3d> out;
   FILE* pipe = popen(cmd.str().c_str(), "r");
   if (pipe == nullptr) return out;
@@ -77,14 +80,12 @@ const std::vector<Eigen::Vector3d> kNedPoints = {
     {0, -1000, 0},    {0, 0, -1000},        {0, 0, 1000},         {-577, 577, -577},
     {577, -577, 577}, {0.123, -4.56, -1.2}, {350.5, 820.25, -30}, {-999.9, 10, 2}};
 
-TEST_P(GeodesyVsCct, NedToGeodeticMatchesInverseTopocentric) {
+TEST_P(GeodesyVsCct, NedToGeodeticMatchesInversePipeline) {
   ASSERT_STRNE(MOCAPLINK_CCT, "MOCAPLINK_CCT-NOTFOUND") << "install proj-bin (scripts/setup)";
   const Origin& origin = GetParam();
   const auto frame = LocalGeodeticFrame::make(origin.position);
   ASSERT_TRUE(frame.has_value());
-  std::vector<Eigen::Vector3d> enu;
-  for (const auto& p : kNedPoints) enu.push_back(ned_enu_swap(p));
-  const auto cct = run_cct(origin.position, true, enu);  // lon lat h
+  const auto cct = run_cct(origin.position, true, kNedPoints);  // N E D in, lon lat h out
   ASSERT_EQ(cct.size(), kNedPoints.size());
   for (std::size_t i = 0; i < kNedPoints.size(); ++i) {
     const GeodeticPosition ours = frame->geodetic_from_ned(kNedPoints[i]);
@@ -98,7 +99,7 @@ TEST_P(GeodesyVsCct, NedToGeodeticMatchesInverseTopocentric) {
   }
 }
 
-TEST_P(GeodesyVsCct, GeodeticToNedMatchesForwardTopocentric) {
+TEST_P(GeodesyVsCct, GeodeticToNedMatchesForwardPipeline) {
   ASSERT_STRNE(MOCAPLINK_CCT, "MOCAPLINK_CCT-NOTFOUND") << "install proj-bin (scripts/setup)";
   const Origin& origin = GetParam();
   const auto frame = LocalGeodeticFrame::make(origin.position);
@@ -116,12 +117,12 @@ TEST_P(GeodesyVsCct, GeodeticToNedMatchesForwardTopocentric) {
   std::vector<Eigen::Vector3d> lon_lat_h;
   for (const auto& p : points)
     lon_lat_h.emplace_back(p.longitude_deg, p.latitude_deg, p.altitude_m);
-  const auto cct = run_cct(o, false, lon_lat_h);  // E N U
+  const auto cct = run_cct(o, false, lon_lat_h);  // N E D
   ASSERT_EQ(cct.size(), points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector3d ours = frame->ned_from_geodetic(points[i]);
-    EXPECT_LT((ours - ned_enu_swap(cct[i])).norm(), kToleranceM)
-        << origin.name << " point " << i << ": ours NED " << ours.transpose() << ", cct ENU "
+    EXPECT_LT((ours - cct[i]).norm(), kToleranceM)
+        << origin.name << " point " << i << ": ours NED " << ours.transpose() << ", cct NED "
         << cct[i].transpose();
     EXPECT_LT(ours.norm(), 1100.0);  // the points really are local
   }
