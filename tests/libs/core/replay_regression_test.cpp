@@ -5,8 +5,12 @@
 // ticks. Every message sent and every event is written as one text line; the result must match
 // data/replay/two_bodies.expected.txt. A behaviour change shows up as a diff of that file.
 //
-// On mismatch the actual output is written to data/replay/two_bodies.actual.txt; to accept it:
-//   MOCAPLINK_UPDATE_GOLDEN=1 ctest --test-dir <build> -R ReplayRegression
+// The test never writes into the source tree. On mismatch the actual output is written to
+// two_bodies.actual.txt in $MOCAPLINK_REPLAY_OUT, or else in this test's build directory
+// (build/<preset>/tests/libs/core/); to accept an intended change, review the diff and copy it
+// over the expected file (the failure message prints the exact `cp` command):
+//   build/<preset>/tests/libs/core/two_bodies.actual.txt
+//   → tests/libs/core/data/replay/two_bodies.expected.txt
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +31,12 @@ namespace {
 using std::chrono::milliseconds;
 
 const std::string kDir = MOCAPLINK_REPLAY_DIR;
+
+/// Where a failing run leaves its output: $MOCAPLINK_REPLAY_OUT, else the build directory.
+std::string output_dir() {
+  const char* dir = std::getenv("MOCAPLINK_REPLAY_OUT");
+  return dir != nullptr && *dir != '\0' ? std::string(dir) : std::string(MOCAPLINK_REPLAY_OUT_DIR);
+}
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -255,22 +265,16 @@ TEST(ReplayRegression, TwoBodiesTwoVehicles) {
 
   const std::string actual = run_replay(recording);
   const std::string expected_path = kDir + "/two_bodies.expected.txt";
-  const std::string actual_path = kDir + "/two_bodies.actual.txt";
-  const char* update = std::getenv("MOCAPLINK_UPDATE_GOLDEN");
-  if (update != nullptr && std::string(update) == "1") {
-    std::ofstream(expected_path, std::ios::binary) << actual;
-    std::remove(actual_path.c_str());
-    GTEST_SUCCEED() << "updated " << expected_path;
-    return;
-  }
+  const std::string actual_path = output_dir() + "/two_bodies.actual.txt";
   const std::string expected = read_file(expected_path);
   std::string where;
   if (!same_output(expected, actual, where)) {
-    std::ofstream(actual_path, std::ios::binary) << actual;
+    const bool written = static_cast<bool>(std::ofstream(actual_path, std::ios::binary) << actual);
     FAIL() << "replay output differs from " << expected_path << " at " << where
-           << "\nActual output written to " << actual_path
-           << "\nIf the change is intended, review the diff and accept it with\n"
-              "  MOCAPLINK_UPDATE_GOLDEN=1 ctest -R ReplayRegression";
+           << (written ? "\nActual output written to " + actual_path
+                       : "\nCannot write the actual output to " + actual_path)
+           << "\nIf the change is intended, review the diff and accept it with\n  cp "
+           << actual_path << " " << expected_path;
   }
   std::remove(actual_path.c_str());
 }
