@@ -51,12 +51,38 @@ TEST(SimSource, DeliversTheWorldsFramesAndFinishes) {
   EXPECT_EQ(source.counters().frames.load(), expected.size());
 }
 
-TEST(SimSource, StopIsPromptAndIdempotent) {
-  SimSource source(SimConfig{}, "sim://");
-  source.start([](core::MocapFrame, core::HostTime) {}, [](SourceState, const std::string&) {});
+TEST(SimSource, StopInterruptsTheWaitForTheNextFrameAndIsIdempotent) {
+  // Frame 1 comes at once, frame 2 only 1000 s later: stop() returning at all (within ctest's
+  // timeout) shows that it wakes the source's wait instead of sleeping until the next frame.
+  SimConfig c;
+  c.rate_hz = 0.001;
+  c.frames = 0;  // endless
+  SimSource source(c, "sim://?rate_hz=0.001");
+  std::mutex mutex;
+  std::condition_variable first_cv;
+  std::size_t frames = 0;
+  std::vector<SourceState> states;
+  source.start(
+      [&](core::MocapFrame, core::HostTime) {
+        const std::lock_guard lock(mutex);
+        ++frames;
+        first_cv.notify_all();
+      },
+      [&](SourceState state, const std::string&) {
+        const std::lock_guard lock(mutex);
+        states.push_back(state);
+      });
+  {
+    std::unique_lock lock(mutex);
+    first_cv.wait(lock, [&] { return frames == 1; });  // the source is now waiting for frame 2
+  }
   source.stop();
-  source.stop();
-  SUCCEED();
+  source.stop();  // a second stop is harmless and returns at once too
+  const std::lock_guard lock(mutex);
+  EXPECT_EQ(frames, 1U);
+  // Stopped, not finished: no `finished` state for a source that was told to stop.
+  EXPECT_EQ(states, (std::vector<SourceState>{SourceState::connected}));
+  EXPECT_EQ(source.counters().frames.load(), 1U);
 }
 
 }  // namespace
