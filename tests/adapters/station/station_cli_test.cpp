@@ -1,7 +1,5 @@
 // `mocaplink bodies` and `mocaplink record` through the real binary: JSON summary of a simulated
 // source, bad URLs, and record sim → CSV → replay → CSV giving the same frames.
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -11,39 +9,15 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_test_support.hpp"
 #include "mocaplink/sources/sim_world.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
 namespace {
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs the binary with `args` (shell-quoted by the caller), capturing stdout and stderr.
-ProcessResult run_mocaplink(const std::string& args) {
-  const std::string err_path = testing::TempDir() + "/station_cli_stderr.txt";
-  const std::string command = std::string(MOCAPLINK_BINARY) + " " + args + " 2>" + err_path;
-  ProcessResult run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.err = read_file(err_path);
-  return run;
-}
+using mocaplink::test::ProcessResult;
+using mocaplink::test::read_file;
+using mocaplink::test::run_mocaplink;
 
 TEST(BodiesCommand, JsonSummaryOfASimulatedSource) {
   const ProcessResult run =

@@ -15,27 +15,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_test_support.hpp"
+
 extern char** environ;
 
 namespace {
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out;
-};
-
-ProcessResult run_mocaplink(const std::string& args) {
-  const std::string command = std::string(MOCAPLINK_BINARY) + " " + args + " 2>/dev/null";
-  ProcessResult run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using mocaplink::test::ProcessResult;
+using mocaplink::test::run_mocaplink;
 
 /// `mocaplink serve` as a child process; readiness is its "serving vicon on HOST:PORT" line.
 class Server {
