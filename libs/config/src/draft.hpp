@@ -147,6 +147,9 @@ void apply_command_line(const std::optional<std::string>& source,
 
 /// Required keys, defaults and cross-field rules; the Config when no error was found
 /// (finalize.cpp).
-[[nodiscard]] std::optional<Config> finalize(const ConfigDraft& draft, Diagnostics& diagnostics);
+/// `validate_source` judges [mocap] source (empty: the shape only).
+[[nodiscard]] std::optional<Config> finalize(const ConfigDraft& draft,
+                                             const SourceValidator& validate_source,
+                                             Diagnostics& diagnostics);
 
 }  // namespace mocaplink::config::detail

@@ -65,7 +65,8 @@ void check_perpendicular(const AxisUse& a, const AxisUse& b, Diagnostics& diagno
                         " (" + to_string(a.axis) + ")");
 }
 
-MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
+MocapSettings finalize_mocap(const ConfigDraft& d, const SourceValidator& validate_source,
+                             Diagnostics& diagnostics) {
   MocapSettings mocap;
   const Where table = d.mocap_header.value_or(d.document);
   if (require(d.source, d.mistyped, "source", table, "mocap.source", diagnostics))
@@ -81,10 +82,14 @@ MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
   check_perpendicular(
       axis_use(d.body_forward, mocap.body_forward, "body_forward", table, "mocap.body_forward"),
       axis_use(d.body_up, mocap.body_up, "body_up", table, "mocap.body_up"), diagnostics);
-  if (mocap.source.kind == SourceKind::natnet && !d.up.present && d.source.value) {
-    diagnostics.warning(d.source.where, d.source.key.empty() ? "mocap.source" : d.source.key,
-                        "Motive streams Y-up unless its Up Axis setting is Z; set [mocap] up "
-                        "(and body_up) to \"+y\" if yours does");
+  if (d.source.value && validate_source) {
+    // The source's own folder judges its URL (and may warn about [mocap] settings that its
+    // system's conventions make suspicious).
+    SourceCheck check = validate_source(d.source.value->text, SourceContext{d.up.present});
+    if (!check.error.empty()) diagnostics.error(d.source.where, d.source.key, check.error);
+    const std::string key = d.source.key.empty() ? "mocap.source" : d.source.key;
+    for (auto& warning : check.warnings)
+      diagnostics.warning(d.source.where, key, std::move(warning));
   }
   return mocap;
 }
@@ -255,9 +260,10 @@ HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
 
 }  // namespace
 
-std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
+std::optional<Config> finalize(const ConfigDraft& d, const SourceValidator& validate_source,
+                               Diagnostics& diagnostics) {
   Config config;
-  config.mocap = finalize_mocap(d, diagnostics);
+  config.mocap = finalize_mocap(d, validate_source, diagnostics);
   config.origin = finalize_origin(d, diagnostics);
   for (const auto& vehicle : d.vehicles) {
     if (auto v =

@@ -11,7 +11,7 @@ namespace mocaplink::sources {
 namespace {
 
 TEST(SimSource, DeliversTheWorldsFramesAndFinishes) {
-  SimConfig c;
+  SimOptions c;
   c.rate_hz = 1000.0;  // 60 frames in ~60 ms
   c.frames = 60;
   c.drop = 0.2;
@@ -52,7 +52,7 @@ TEST(SimSource, DeliversTheWorldsFramesAndFinishes) {
 }
 
 TEST(SimSource, StopIsPromptAndIdempotent) {
-  SimSource source(SimConfig{}, "sim://");
+  SimSource source(SimOptions{}, "sim://");
   source.start([](core::MocapFrame, core::HostTime) {}, [](SourceState, const std::string&) {});
   source.stop();
   source.stop();
