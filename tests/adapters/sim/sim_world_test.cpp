@@ -179,7 +179,7 @@ TEST(SimWorld, DropsOcclusionsAndOutliersFollowTheirProbabilities) {
 }
 
 TEST(SimOptions, GuardRefusesConfigsOutsideTheDocumentedRanges) {
-  // URLs are range-checked by config::parse_source_url; this guard is for configs built in code.
+  // URLs are range-checked by parse_sim_options; this guard is for options built in code.
   EXPECT_EQ(validate_sim_options(SimOptions{}), "");
   SimOptions c;
   c.bodies = 0;
