@@ -97,7 +97,7 @@ ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys
   }
   draft.vehicles.push_back(std::move(vehicle));
   ConfigResult result;
-  result.config = detail::finalize(draft, {}, diagnostics);  // the base source is already valid
+  result.config = detail::finalize(draft, diagnostics);
   result.errors = std::move(diagnostics.errors);
   // Only what concerns the new vehicle: the others' warnings were given when they came.
   for (auto& w : diagnostics.warnings) {

@@ -85,6 +85,9 @@ struct VehicleDraft {
 struct ConfigDraft {
   Where document;  ///< FILE:1:1, where keys of absent tables are reported missing
   std::optional<Where> mocap_header;
+  /// Judges [mocap] source / --source when given (the caller's source registry); empty: the
+  /// SCHEME://… shape only.
+  SourceValidator validate_source;
   Field<SourceUrl> source;
   Field<Axis> up;
   Field<North> north;
@@ -147,9 +150,6 @@ void apply_command_line(const std::optional<std::string>& source,
 
 /// Required keys, defaults and cross-field rules; the Config when no error was found
 /// (finalize.cpp).
-/// `validate_source` judges [mocap] source (empty: the shape only).
-[[nodiscard]] std::optional<Config> finalize(const ConfigDraft& draft,
-                                             const SourceValidator& validate_source,
-                                             Diagnostics& diagnostics);
+[[nodiscard]] std::optional<Config> finalize(const ConfigDraft& draft, Diagnostics& diagnostics);
 
 }  // namespace mocaplink::config::detail

@@ -65,8 +65,7 @@ void check_perpendicular(const AxisUse& a, const AxisUse& b, Diagnostics& diagno
                         " (" + to_string(a.axis) + ")");
 }
 
-MocapSettings finalize_mocap(const ConfigDraft& d, const SourceValidator& validate_source,
-                             Diagnostics& diagnostics) {
+MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
   MocapSettings mocap;
   const Where table = d.mocap_header.value_or(d.document);
   if (require(d.source, d.mistyped, "source", table, "mocap.source", diagnostics))
@@ -82,14 +81,14 @@ MocapSettings finalize_mocap(const ConfigDraft& d, const SourceValidator& valida
   check_perpendicular(
       axis_use(d.body_forward, mocap.body_forward, "body_forward", table, "mocap.body_forward"),
       axis_use(d.body_up, mocap.body_up, "body_up", table, "mocap.body_up"), diagnostics);
-  if (d.source.value && validate_source) {
-    // The source's own folder judges its URL (and may warn about [mocap] settings that its
-    // system's conventions make suspicious).
-    SourceCheck check = validate_source(d.source.value->text, SourceContext{d.up.present});
-    if (!check.error.empty()) diagnostics.error(d.source.where, d.source.key, check.error);
+  if (d.source.value && d.validate_source) {
+    // The source's URL was judged when given (keys.cpp); its configuration warnings depend on the
+    // rest of [mocap] (e.g. a system that streams Y-up when `up` is not written).
     const std::string key = d.source.key.empty() ? "mocap.source" : d.source.key;
-    for (auto& warning : check.warnings)
+    for (auto& warning :
+         d.validate_source(d.source.value->text, SourceContext{d.up.present}).warnings) {
       diagnostics.warning(d.source.where, key, std::move(warning));
+    }
   }
   return mocap;
 }
@@ -260,10 +259,9 @@ HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
 
 }  // namespace
 
-std::optional<Config> finalize(const ConfigDraft& d, const SourceValidator& validate_source,
-                               Diagnostics& diagnostics) {
+std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
   Config config;
-  config.mocap = finalize_mocap(d, validate_source, diagnostics);
+  config.mocap = finalize_mocap(d, diagnostics);
   config.origin = finalize_origin(d, diagnostics);
   for (const auto& vehicle : d.vehicles) {
     if (auto v =

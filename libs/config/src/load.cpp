@@ -83,10 +83,9 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin) {
 
 namespace {
 
-ConfigResult finish(const detail::ConfigDraft& draft, const SourceValidator& validate_source,
-                    detail::Diagnostics& diagnostics) {
+ConfigResult finish(const detail::ConfigDraft& draft, detail::Diagnostics& diagnostics) {
   ConfigResult result;
-  auto config = detail::finalize(draft, validate_source, diagnostics);
+  auto config = detail::finalize(draft, diagnostics);
   // File positions first in file order; command-line entries (line 0) after, in option order.
   const auto by_position = [](const ConfigError& a, const ConfigError& b) {
     if ((a.line == 0) != (b.line == 0)) return a.line != 0;
@@ -113,6 +112,7 @@ ConfigResult load_config(std::string_view toml_text, std::string_view filename,
                          const CommandLineOverrides& overrides,
                          const SourceValidator& validate_source) {
   detail::ConfigDraft draft;
+  draft.validate_source = validate_source;
   detail::Diagnostics diagnostics;
   if (!detail::read_toml(toml_text, filename, draft, diagnostics)) {
     // Nothing after a syntax error is known; more messages would only mislead.
@@ -122,16 +122,17 @@ ConfigResult load_config(std::string_view toml_text, std::string_view filename,
   }
   detail::apply_command_line(overrides.source, overrides.http, overrides.vehicles, draft,
                              diagnostics);
-  return finish(draft, validate_source, diagnostics);
+  return finish(draft, diagnostics);
 }
 
 ConfigResult apply_overrides(const Config& base, const CommandLineOverrides& overrides,
                              std::string_view base_name, const SourceValidator& validate_source) {
   detail::ConfigDraft draft = detail::draft_from_config(base, base_name);
+  draft.validate_source = validate_source;
   detail::Diagnostics diagnostics;
   detail::apply_command_line(overrides.source, overrides.http, overrides.vehicles, draft,
                              diagnostics);
-  return finish(draft, validate_source, diagnostics);
+  return finish(draft, diagnostics);
 }
 
 }  // namespace mocaplink::config

@@ -112,6 +112,14 @@ TEST(SourceRegistry, ASourcesConfigWarningsReachTheConfigChecker) {
   ASSERT_EQ(refused.errors.size(), 1u);
   EXPECT_EQ(config::to_string(refused.errors[0]),
             "m.toml:2:10: mocap.source: unknown source scheme \"sim\" (one of: yup)");
+  config::CommandLineOverrides o;
+  o.source = "192.168.1.3";
+  const auto not_url = config::load_config("[mocap]\nsource = \"yup://h\"\n" + vehicle, "m.toml", o,
+                                           registry.validator());
+  ASSERT_EQ(not_url.errors.size(), 1u);
+  EXPECT_EQ(config::to_string(not_url.errors[0]),
+            "--source: \"192.168.1.3\" is not a source URL; expected SCHEME://..., where SCHEME is "
+            "one of yup");
 }
 
 }  // namespace
