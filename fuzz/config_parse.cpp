@@ -1,6 +1,7 @@
 // Fuzz target: configuration text → parse_config, and every line of the input as a --vehicle SPEC,
-// --source URL, --http ADDR and link URL, and as a `key=value` of a vehicle added at run time
-// (add_vehicle, values typed as JSON would give them) (libs/config). Beyond "no crash", it checks
+// --source URL (through the source registry: every built-in source's option parser), --http ADDR
+// and link URL, and as a `key=value` of a vehicle added at run time (add_vehicle, values typed as
+// JSON would give them) (libs/config, adapters/sources). Beyond "no crash", it checks
 // the library's contract: a Config exists exactly when there are no errors, every error has a
 // message and a sane position, and every accepted Config satisfies the documented ranges and rules.
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
+#include "mocaplink/sources/registry.hpp"
 
 namespace {
 
@@ -83,8 +85,15 @@ void check_result(const ConfigResult& result) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const auto sources = mocaplink::sources::builtin_sources();
+  static const auto validate_source = sources.validator();
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  check_result(mocaplink::config::parse_config(text, "fuzz.toml"));
+  const auto checked = [](const ConfigResult& result) {
+    check_result(result);
+    // An accepted configuration's source is one the registry accepts (what `run` opens).
+    if (result.config) require(sources.check(result.config->mocap.source.text).error.empty());
+  };
+  checked(mocaplink::config::parse_config(text, "fuzz.toml", validate_source));
 
   // The same bytes as command-line options, one per line (at most 8 lines).
   mocaplink::config::CommandLineOverrides overrides;
@@ -93,7 +102,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   while (start < text.size() && overrides.vehicles.size() < 8) {
     const auto end = std::min(text.find('\n', start), text.size());
     const std::string line(text.substr(start, end - start));
-    (void)mocaplink::config::parse_source_url(line);
+    const auto shape = mocaplink::config::parse_source_url(line);
+    const auto source = sources.check(line);
+    require(shape || !source.error.empty());  // the registry never accepts a malformed URL
     (void)mocaplink::config::parse_link_url(line);
     (void)mocaplink::config::parse_north(line);
     overrides.vehicles.push_back(line);
@@ -107,7 +118,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     overrides.source = overrides.vehicles.front();
     overrides.http = overrides.vehicles.back();
   }
-  check_result(mocaplink::config::apply_overrides(mocaplink::config::demo_config(), overrides));
-  check_result(mocaplink::config::load_config(text, "fuzz.toml", overrides));
+  checked(mocaplink::config::apply_overrides(mocaplink::config::demo_config(), overrides,
+                                             "built-in demo", validate_source));
+  checked(mocaplink::config::load_config(text, "fuzz.toml", overrides, validate_source));
   return 0;
 }

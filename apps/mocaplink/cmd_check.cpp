@@ -1,7 +1,6 @@
 // `mocaplink check FILE`: validates a configuration without running anything. Prints every error
 // (stderr, "FILE:LINE:COL: key: message") and exits 1, or prints a summary (stdout) and exits 0.
 // `run` joins this file with issue 5.
-#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -12,7 +11,7 @@
 #include "commands.hpp"
 #include "mocaplink/config/config_error.hpp"
 #include "mocaplink/config/load.hpp"
-#include "mocaplink/sources/source_factory.hpp"
+#include "mocaplink/sources/registry.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -53,14 +52,15 @@ void print_summary(const config::Config& cfg) {
               cfg.http.token.empty() ? "" : " (token required)");
 }
 
-int run_check(const std::string& path) {
+int run_check(const std::string& path, const sources::SourceRegistry& sources) {
   std::string error;
   const auto text = read_file(path, error);
   if (!text) {
     std::fprintf(stderr, "mocaplink check: cannot read %s: %s\n", path.c_str(), error.c_str());
     return 1;
   }
-  const auto result = config::parse_config(*text, path);
+  // The source is judged by the same registry `run` opens it with: they agree by construction.
+  const auto result = config::parse_config(*text, path, sources.validator());
   for (const auto& e : result.errors) std::fprintf(stderr, "%s\n", config::to_string(e).c_str());
   for (const auto& warning : result.warnings) {
     std::fprintf(stderr, "warning: %s\n", config::to_string(warning).c_str());
@@ -70,30 +70,19 @@ int run_check(const std::string& path) {
     std::fprintf(stderr, "%s: %zu error%s\n", path.c_str(), n, n == 1 ? "" : "s");
     return 1;
   }
-  // A valid file whose source this binary cannot open: `run` would refuse it (a property of the
-  // build, not of the file, so a warning).
-  const std::string scheme = config::to_string(result.config->mocap.source.kind);
-  const auto available = sources::available_source_schemes();
-  if (std::find(available.begin(), available.end(), scheme) == available.end()) {
-    std::string list;
-    for (const auto& a : available) list += (list.empty() ? "" : ", ") + a;
-    std::fprintf(stderr,
-                 "warning: %s: mocap.source: this mocaplink was built without %s:// (available: "
-                 "%s); run will refuse it\n",
-                 path.c_str(), scheme.c_str(), list.c_str());
-  }
   print_summary(*result.config);
   return 0;
 }
 
 }  // namespace
 
-void add_config_commands(CLI::App& app, ExitCode& exit_code) {
+void add_config_commands(CLI::App& app, ExitCode& exit_code,
+                         const sources::SourceRegistry& sources) {
   auto* check = app.add_subcommand(
       "check", "Validate a configuration file: every error with FILE:LINE:COL; exit 1 on errors");
   auto path = std::make_shared<std::string>();
   check->add_option("FILE", *path, "TOML configuration file")->required();
-  check->callback([path, &exit_code] { exit_code.value = run_check(*path); });
+  check->callback([path, &exit_code, &sources] { exit_code.value = run_check(*path, sources); });
 }
 
 }  // namespace mocaplink::app

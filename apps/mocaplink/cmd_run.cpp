@@ -43,8 +43,8 @@ std::chrono::milliseconds summary_period() {
   return std::chrono::seconds(10);
 }
 
-int run_command(const RunOptions& options) {
-  auto config = load_run_config(options, stderr);
+int run_command(const RunOptions& options, const sources::SourceRegistry& sources) {
+  auto config = load_run_config(options, sources.validator(), stderr);
   if (!config) return kExitBadInput;
   setup_logging();
   DaemonSettings settings;
@@ -56,12 +56,12 @@ int run_command(const RunOptions& options) {
   spdlog::info("mocaplink {}: source {}, {} vehicle{}", MOCAPLINK_VERSION,
                settings.config.mocap.source.text, settings.config.vehicles.size(),
                settings.config.vehicles.size() == 1 ? "" : "s");
-  return run_daemon(settings);
+  return run_daemon(settings, sources);
 }
 
 }  // namespace
 
-void add_run_commands(CLI::App& app, ExitCode& exit_code) {
+void add_run_commands(CLI::App& app, ExitCode& exit_code, const sources::SourceRegistry& sources) {
   auto* run = app.add_subcommand(
       "run", "Run the bridge: mocap source -> MAVLink to every vehicle (no arguments: the demo)");
   auto options = std::make_shared<RunOptions>();
@@ -75,7 +75,8 @@ void add_run_commands(CLI::App& app, ExitCode& exit_code) {
   run->add_option("--http", options->http, "Dashboard address HOST:PORT, replacing [http] listen");
   run->add_option("--record", options->record_dir,
                   "Record mocap frames (DIR/mocap.csv) and MAVLink traffic (DIR/<vehicle>.tlog)");
-  run->callback([options, &exit_code] { exit_code.value = run_command(*options); });
+  run->callback(
+      [options, &exit_code, &sources] { exit_code.value = run_command(*options, sources); });
 }
 
 }  // namespace mocaplink::app

@@ -1,17 +1,20 @@
 // `mocaplink serve --protocol P --from sim|replay:FILE [--listen ADDR] [--rate HZ]` (DESIGN.md
-// "Command line"): emulate a mocap server. Only the Vicon DataStream protocol exists so far
-// (adapters/sources/vicon, ViconServer); other protocols exit 1 with "not supported yet".
+// "Command line"): emulate a mocap server. P is any registered source with an emulator
+// (SourceDescriptor::make_emulator; today vicon); others exit 1 with "not supported yet".
 //
 // --from sim            the built-in simulator (Body1, Body2, Body3; sim:// defaults) at --rate
 // --from sim://?KEYS    the same with sim:// keys (bodies, noise_mm, seed, occlude, …); rate_hz
 //                       is always --rate
 // --from replay:FILE    a mocaplink recording, with its recorded timing (replay://FILE?KEYS too)
-// --listen ADDR         HOST:PORT, :PORT or HOST (IPv6 as [ADDR]:PORT); default 0.0.0.0:801
+// --from URL            any other source URL (the source registry opens it), relayed as it comes
+// --listen ADDR         HOST:PORT, :PORT or HOST (IPv6 as [ADDR]:PORT); default 0.0.0.0 and the
+//                       protocol's port (vicon: 801)
 // --rate HZ             frame rate of the sim and of StreamInfo (replay: used when a frame does
 //                       not say); default 100
-// On start one line goes to stdout: "serving vicon on HOST:PORT from SOURCE at RATE Hz" (PORT is
+// On start one line goes to stdout: "serving P on HOST:PORT from SOURCE at RATE Hz" (PORT is
 // the bound one, so --listen 127.0.0.1:0 works for scripts). Runs until SIGINT/SIGTERM (exit 0).
 // Exit 1: bad arguments; exit 2: cannot listen or cannot read the recording.
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <memory>
@@ -23,14 +26,9 @@
 #include <asio/io_context.hpp>
 
 #include "commands.hpp"
+#include "mocaplink/config/url.hpp"
 #include "mocaplink/io/signals.hpp"
-#include "mocaplink/sources/sim_world.hpp"
-#include "mocaplink/sources/source_factory.hpp"
-#include "mocaplink/sources/vicon_server.hpp"
-#if __has_include("mocaplink/sources/replay_source.hpp")
-#include "mocaplink/sources/replay_source.hpp"
-#define MOCAPLINK_SERVE_HAS_REPLAY 1
-#endif
+#include "mocaplink/sources/registry.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -38,22 +36,41 @@ namespace {
 struct ServeArgs {
   std::string protocol;
   std::string from;
-  std::string listen = "0.0.0.0:801";
+  std::optional<std::string> listen;
   double rate_hz = 100.0;
 };
 
-// `--from sim`, `sim://?…`, `replay:FILE` or `replay://FILE` → the source URL parser every other
-// command uses (config::parse_source_url), so the options and ranges are the same everywhere.
-config::ValueOrError<config::SourceUrl> parse_from(const std::string& from) {
-  if (from == "sim") return config::parse_source_url("sim://");
+// `--from sim` and `replay:FILE` are shorthands for sim:// and replay://FILE.
+std::string from_url(const std::string& from) {
+  if (from == "sim") return "sim://";
   if (from.starts_with("replay:") && !from.starts_with("replay://")) {
-    return config::parse_source_url("replay://" + from.substr(7));
+    return "replay://" + from.substr(7);
   }
-  return config::parse_source_url(from);
+  return from;
 }
 
-// "HOST:PORT", ":PORT", "HOST", "[V6]:PORT" → host, port. nullopt on a bad port.
-std::optional<std::pair<std::string, std::uint16_t>> parse_listen(const std::string& text) {
+// `url` with its rate_hz option set to `rate_hz` (when its source has one: the simulator), so the
+// frames come at --rate. Other query items keep their order.
+std::string with_rate(const sources::SourceRegistry& sources, const std::string& url,
+                      double rate_hz) {
+  const auto parts = config::split_url(url);
+  if (!parts) return url;
+  const auto* source = sources.find(parts.value().scheme);
+  if (source == nullptr || std::find(source->option_keys.begin(), source->option_keys.end(),
+                                     "rate_hz") == source->option_keys.end()) {
+    return url;
+  }
+  std::string out = std::string(url.substr(0, url.find('?'))) + "?";
+  for (const auto& [key, value] : parts.value().query) {
+    if (key != "rate_hz") out += std::string(key) + "=" + std::string(value) + "&";
+  }
+  return out + "rate_hz=" + config::format_number(rate_hz);
+}
+
+// "HOST:PORT", ":PORT", "HOST", "[V6]:PORT" → host, port (`default_port` when not given).
+// nullopt on a bad port.
+std::optional<std::pair<std::string, std::uint16_t>> parse_listen(const std::string& text,
+                                                                  std::uint16_t default_port) {
   std::string host = text;
   std::string port_text;
   if (text.starts_with('[')) {
@@ -69,7 +86,7 @@ std::optional<std::pair<std::string, std::uint16_t>> parse_listen(const std::str
     port_text = text.substr(colon + 1);
   }
   if (host.empty()) host = "0.0.0.0";
-  unsigned port = 801;
+  unsigned port = default_port;
   if (!port_text.empty()) {
     const auto [end, ec] =
         std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
@@ -80,125 +97,88 @@ std::optional<std::pair<std::string, std::uint16_t>> parse_listen(const std::str
   return std::make_pair(host, static_cast<std::uint16_t>(port));
 }
 
-int run_serve(const ServeArgs& args) {
-  if (args.protocol != "vicon") {
-    std::fprintf(stderr, "mocaplink serve: protocol '%s' is not supported yet (supported: vicon)\n",
-                 args.protocol.c_str());
+std::string join(const std::vector<std::string_view>& names) {
+  std::string out;
+  for (const auto name : names) out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
+}
+
+int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
+  const sources::SourceDescriptor* protocol = sources.find(args.protocol);
+  if (protocol == nullptr || !protocol->make_emulator) {
+    std::fprintf(stderr, "mocaplink serve: protocol '%s' is not supported yet (supported: %s)\n",
+                 args.protocol.c_str(), join(sources.servable()).c_str());
     return 1;
   }
   if (!(args.rate_hz > 0.0 && args.rate_hz <= 2000.0)) {
     std::fprintf(stderr, "mocaplink serve: --rate must be in (0, 2000] Hz\n");
     return 1;
   }
-  const auto listen = parse_listen(args.listen);
+  const auto listen = parse_listen(args.listen.value_or(":" + std::to_string(protocol->serve_port)),
+                                   protocol->serve_port);
   if (!listen) {
     std::fprintf(stderr, "mocaplink serve: bad --listen '%s' (expected HOST:PORT, :PORT or HOST)\n",
-                 args.listen.c_str());
+                 args.listen.value_or("").c_str());
     return 1;
   }
 
-  std::unique_ptr<sources::SimWorld> world;
-#ifdef MOCAPLINK_SERVE_HAS_REPLAY
-  std::unique_ptr<sources::ReplaySource> replay;
-#endif
-  const auto from_url = parse_from(args.from);
-  if (!from_url) {
+  const std::string url = with_rate(sources, from_url(args.from), args.rate_hz);
+  if (const auto check = sources.check(url); !check.error.empty()) {
     std::fprintf(
         stderr, "mocaplink serve: bad --from '%s' (expected sim, sim://?KEYS or replay:FILE): %s\n",
-        args.from.c_str(), from_url.error().c_str());
+        args.from.c_str(), check.error.c_str());
     return 1;
   }
-  const config::SourceUrl& source = from_url.value();
-  if (source.kind == config::SourceKind::sim) {
-    sources::SimConfig sim = source.sim;
-    sim.rate_hz = args.rate_hz;
-    if (const auto err = sources::validate_sim_config(sim); !err.empty()) {
-      std::fprintf(stderr, "mocaplink serve: --from %s: %s\n", args.from.c_str(), err.c_str());
-      return 1;
-    }
-    world = std::make_unique<sources::SimWorld>(sim);
-  } else if (source.kind == config::SourceKind::replay) {
-#ifdef MOCAPLINK_SERVE_HAS_REPLAY
-    const sources::ReplayConfig config{source.replay_path, source.replay_speed, source.replay_loop};
-    auto opened = sources::ReplaySource::open(config, args.from);
-    if (const auto* err = std::get_if<std::string>(&opened)) {
-      std::fprintf(stderr, "mocaplink serve: %s\n", err->c_str());
-      return 2;
-    }
-    replay = std::move(std::get<std::unique_ptr<sources::ReplaySource>>(opened));
-#else
-    std::fprintf(stderr, "mocaplink serve: --from replay: is not available in this build\n");
-    return 1;
-#endif
-  } else {
-    std::fprintf(stderr, "mocaplink serve: bad --from '%s' (expected sim or replay:FILE)\n",
-                 args.from.c_str());
-    return 1;
+  auto opened = sources.open(url);
+  if (const auto* err = std::get_if<std::string>(&opened)) {
+    std::fprintf(stderr, "mocaplink serve: %s\n", err->c_str());
+    return 2;
   }
+  const auto source = std::move(std::get<std::unique_ptr<sources::Source>>(opened));
 
   // SIGINT/SIGTERM from here on stop the server cleanly (a signal during start-up waits for run).
   asio::io_context loop;
   io::StopSignals stop_signals(loop, [&loop](int, int) { loop.stop(); });
-  sources::ViconServerOptions options;
-  options.listen_host = listen->first;
-  options.port = listen->second;
-  options.rate_hz = args.rate_hz;
-  sources::ViconServer server(options);
-  sources::ViconServer::FrameProvider provider;
-  if (world) {
-    provider = [w = world.get()](std::uint64_t tick) -> std::optional<core::MocapFrame> {
-      const std::uint64_t n = tick + 1;  // SimWorld numbers frames from 1
-      if (w->dropped(n) || (w->config().frames != 0 && n > w->config().frames)) {
-        return std::nullopt;
-      }
-      return w->frame(n);
-    };
-  }
-  if (const auto err = server.start(std::move(provider))) {
+  const auto server = protocol->make_emulator(
+      sources::EmulatorOptions{listen->first, listen->second, args.rate_hz});
+  if (const auto err = server->start({})) {
     std::fprintf(stderr, "mocaplink serve: %s%s\n", err->c_str(),
                  listen->second < 1024 ? " (ports below 1024 need root; try --listen :8801)" : "");
     return 2;
   }
-#ifdef MOCAPLINK_SERVE_HAS_REPLAY
-  if (replay) {
-    replay->start([&server](core::MocapFrame f, core::HostTime) { server.publish(std::move(f)); },
-                  [](sources::SourceState s, const std::string& detail) {
-                    std::fprintf(stderr, "mocaplink serve: replay %s%s%s\n", to_string(s),
-                                 detail.empty() ? "" : ": ", detail.c_str());
-                  });
-  }
-#endif
-  std::printf("serving vicon on %s:%u from %s at %g Hz\n", listen->first.c_str(),
-              static_cast<unsigned>(server.port()), args.from.c_str(), args.rate_hz);
+  const std::string scheme = url.substr(0, url.find(':'));
+  source->start([&server](core::MocapFrame f, core::HostTime) { server->publish(std::move(f)); },
+                [&scheme](sources::SourceState s, const std::string& detail) {
+                  std::fprintf(stderr, "mocaplink serve: %s %s%s%s\n", scheme.c_str(), to_string(s),
+                               detail.empty() ? "" : ": ", detail.c_str());
+                });
+  std::printf("serving %s on %s:%u from %s at %g Hz\n", args.protocol.c_str(),
+              listen->first.c_str(), static_cast<unsigned>(server->port()), args.from.c_str(),
+              args.rate_hz);
   std::fflush(stdout);
 
   loop.run();  // until SIGINT/SIGTERM
-#ifdef MOCAPLINK_SERVE_HAS_REPLAY
-  if (replay) replay->stop();
-#endif
-  server.stop();
-  const auto& c = server.counters();
-  std::fprintf(stderr,
-               "mocaplink serve: stopped; %llu frames, %llu clients, %llu frames dropped for slow "
-               "clients, %llu malformed requests\n",
-               static_cast<unsigned long long>(c.frames.load()),
-               static_cast<unsigned long long>(c.clients_accepted.load()),
-               static_cast<unsigned long long>(c.frames_dropped.load()),
-               static_cast<unsigned long long>(c.malformed_requests.load()));
+  source->stop();
+  server->stop();
+  std::fprintf(stderr, "mocaplink serve: stopped; %s\n", server->summary().c_str());
   return 0;
 }
 
 }  // namespace
 
-void add_serve_commands(CLI::App& app, ExitCode& exit_code) {
+void add_serve_commands(CLI::App& app, ExitCode& exit_code,
+                        const sources::SourceRegistry& sources) {
   auto args = std::make_shared<ServeArgs>();
-  CLI::App* serve =
-      app.add_subcommand("serve", "Emulate a mocap server (vicon) from sim or a replay");
-  serve->add_option("--protocol", args->protocol, "Protocol to serve: vicon")->required();
+  CLI::App* serve = app.add_subcommand(
+      "serve", "Emulate a mocap server (" + join(sources.servable()) + ") from sim or a replay");
+  serve->add_option("--protocol", args->protocol, "Protocol to serve: " + join(sources.servable()))
+      ->required();
   serve->add_option("--from", args->from, "sim, sim://?KEYS, or replay:FILE")->required();
-  serve->add_option("--listen", args->listen, "HOST:PORT, :PORT or HOST (default 0.0.0.0:801)");
+  serve->add_option(
+      "--listen", args->listen,
+      "HOST:PORT, :PORT or HOST (default 0.0.0.0 and the protocol's port; vicon: 801)");
   serve->add_option("--rate", args->rate_hz, "Frame rate in Hz (default 100)");
-  serve->callback([args, &exit_code] { exit_code.value = run_serve(*args); });
+  serve->callback([args, &exit_code, &sources] { exit_code.value = run_serve(*args, sources); });
 }
 
 }  // namespace mocaplink::app

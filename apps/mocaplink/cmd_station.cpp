@@ -24,7 +24,7 @@
 #include "mocaplink/core/station.hpp"
 #include "mocaplink/io/clock.hpp"
 #include "mocaplink/io/signals.hpp"
-#include "mocaplink/sources/source_factory.hpp"
+#include "mocaplink/sources/registry.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
 namespace mocaplink::app {
@@ -117,10 +117,11 @@ class StationSession {
   std::string detail_;
 };
 
-/// make_source or a message on stderr and exit code 1.
-std::unique_ptr<sources::Source> open_source(const std::string& command, const std::string& url,
+/// The source from the registry, or a message on stderr and exit code 1.
+std::unique_ptr<sources::Source> open_source(const sources::SourceRegistry& sources,
+                                             const std::string& command, const std::string& url,
                                              ExitCode& exit_code) {
-  auto made = sources::make_source(url);
+  auto made = sources.open(url);
   if (auto* error = std::get_if<std::string>(&made)) {
     std::fprintf(stderr, "mocaplink %s: %s\n", command.c_str(), error->c_str());
     exit_code.value = 1;
@@ -186,9 +187,9 @@ std::string to_text(const std::string& url, SourceState state, const std::string
   return out;
 }
 
-void run_bodies(const std::string& url, std::optional<double> seconds, bool json,
-                ExitCode& exit_code) {
-  auto source = open_source("bodies", url, exit_code);
+void run_bodies(const sources::SourceRegistry& sources, const std::string& url,
+                std::optional<double> seconds, bool json, ExitCode& exit_code) {
+  auto source = open_source(sources, "bodies", url, exit_code);
   if (!source) return;
   StationSession session(std::move(source), nullptr);
   const bool live = !json && !seconds;
@@ -218,9 +219,9 @@ void run_bodies(const std::string& url, std::optional<double> seconds, bool json
   }
 }
 
-void run_record(const std::string& url, const std::string& out_path, std::optional<double> seconds,
-                ExitCode& exit_code) {
-  auto source = open_source("record", url, exit_code);
+void run_record(const sources::SourceRegistry& sources, const std::string& url,
+                const std::string& out_path, std::optional<double> seconds, ExitCode& exit_code) {
+  auto source = open_source(sources, "record", url, exit_code);
   if (!source) return;
   std::ofstream out(out_path, std::ios::binary | std::ios::trunc);
   if (!out) {
@@ -265,7 +266,8 @@ void run_record(const std::string& url, const std::string& out_path, std::option
 
 }  // namespace
 
-void add_station_commands(CLI::App& app, ExitCode& exit_code) {
+void add_station_commands(CLI::App& app, ExitCode& exit_code,
+                          const sources::SourceRegistry& sources) {
   struct Options {
     std::string source;
     std::string out;
@@ -284,8 +286,8 @@ void add_station_commands(CLI::App& app, ExitCode& exit_code) {
       ->check(CLI::PositiveNumber);
   bodies->add_flag("--json", options->json,
                    "Print one JSON object at the end (after --seconds, end of a replay, Ctrl-C)");
-  bodies->callback([options, &exit_code] {
-    run_bodies(options->source, options->seconds, options->json, exit_code);
+  bodies->callback([options, &exit_code, &sources] {
+    run_bodies(sources, options->source, options->seconds, options->json, exit_code);
   });
 
   auto* record = app.add_subcommand("record", "Write mocap frames to a CSV recording");
@@ -293,8 +295,8 @@ void add_station_commands(CLI::App& app, ExitCode& exit_code) {
   record->add_option("--out", options->out, "Recording file to write (replaced)")->required();
   record->add_option("--seconds", options->seconds, "Stop after N s (default: Ctrl-C or end)")
       ->check(CLI::PositiveNumber);
-  record->callback([options, &exit_code] {
-    run_record(options->source, options->out, options->seconds, exit_code);
+  record->callback([options, &exit_code, &sources] {
+    run_record(sources, options->source, options->out, options->seconds, exit_code);
   });
 }
 

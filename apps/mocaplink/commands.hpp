@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mocaplink/sources/registry.hpp"
+
 namespace mocaplink::app {
 
 /// Where a subcommand stores its exit code (main returns it after parsing and running).
@@ -14,13 +16,17 @@ struct ExitCode {
 
 /// `mavlink encode|decode|listen` (cmd_mavlink.cpp).
 void add_mavlink_commands(CLI::App& app, ExitCode& exit_code);
+// The commands that take a source URL get main()'s source registry, which must outlive parsing.
+
 /// `bodies`, `record` (cmd_station.cpp).
-void add_station_commands(CLI::App& app, ExitCode& exit_code);
+void add_station_commands(CLI::App& app, ExitCode& exit_code,
+                          const sources::SourceRegistry& sources);
 /// `serve` (cmd_serve.cpp).
-void add_serve_commands(CLI::App& app, ExitCode& exit_code);
+void add_serve_commands(CLI::App& app, ExitCode& exit_code, const sources::SourceRegistry& sources);
 /// `check` (cmd_check.cpp).
-void add_config_commands(CLI::App& app, ExitCode& exit_code);
+void add_config_commands(CLI::App& app, ExitCode& exit_code,
+                         const sources::SourceRegistry& sources);
 /// `run` (cmd_run.cpp).
-void add_run_commands(CLI::App& app, ExitCode& exit_code);
+void add_run_commands(CLI::App& app, ExitCode& exit_code, const sources::SourceRegistry& sources);
 
 }  // namespace mocaplink::app

@@ -12,10 +12,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", MOCAPLINK_VERSION);
   app.require_subcommand(1);
   mocaplink::app::ExitCode exit_code;
-  mocaplink::app::add_run_commands(app, exit_code);
-  mocaplink::app::add_config_commands(app, exit_code);
-  mocaplink::app::add_station_commands(app, exit_code);
-  mocaplink::app::add_serve_commands(app, exit_code);
+  const auto sources = mocaplink::sources::builtin_sources();
+  mocaplink::app::add_run_commands(app, exit_code, sources);
+  mocaplink::app::add_config_commands(app, exit_code, sources);
+  mocaplink::app::add_station_commands(app, exit_code, sources);
+  mocaplink::app::add_serve_commands(app, exit_code, sources);
   mocaplink::app::add_mavlink_commands(app, exit_code);
   try {
     app.parse(argc, argv);

@@ -109,7 +109,9 @@ std::size_t frame_bytes(core::MessageKind kind) {
 
 }  // namespace
 
-std::optional<config::Config> load_run_config(const RunOptions& options, std::FILE* err) {
+std::optional<config::Config> load_run_config(const RunOptions& options,
+                                              const config::SourceValidator& validate_source,
+                                              std::FILE* err) {
   config::CommandLineOverrides overrides;
   overrides.source = options.source;
   overrides.http = options.http;
@@ -125,9 +127,9 @@ std::optional<config::Config> load_run_config(const RunOptions& options, std::FI
     }
     std::ostringstream text;
     text << in.rdbuf();
-    result = config::load_config(text.str(), name, overrides);
+    result = config::load_config(text.str(), name, overrides, validate_source);
   } else {
-    result = config::apply_overrides(config::demo_config(), overrides);
+    result = config::apply_overrides(config::demo_config(), overrides, name, validate_source);
   }
   print(err, result);
   if (!result.ok()) {

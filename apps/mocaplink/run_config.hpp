@@ -24,9 +24,10 @@ struct RunOptions {
 
 /// Reads the file (if any), applies the overrides (to the demo config when no file is given),
 /// and prints every error ("FILE:LINE:COL: key: message") and warning ("warning: ...") to `err`.
-/// nullopt when the configuration is unusable.
-[[nodiscard]] std::optional<config::Config> load_run_config(const RunOptions& options,
-                                                            std::FILE* err);
+/// nullopt when the configuration is unusable. The source is judged by `validate_source` (the
+/// source registry's, as for `check`).
+[[nodiscard]] std::optional<config::Config> load_run_config(
+    const RunOptions& options, const config::SourceValidator& validate_source, std::FILE* err);
 
 /// The core's view of a validated Config. Errors here would be bugs in the config library
 /// (which checks the same rules) and are returned as text.

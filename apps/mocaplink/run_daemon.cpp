@@ -21,7 +21,7 @@
 #include "mocaplink/io/signing_store.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/mavlink/signing.hpp"
-#include "mocaplink/sources/source_factory.hpp"
+#include "mocaplink/sources/registry.hpp"
 #include "run_config.hpp"
 #include "run_dashboard.hpp"
 #include "run_links.hpp"
@@ -427,7 +427,7 @@ int Daemon::run() {
 
 }  // namespace
 
-int run_daemon(const DaemonSettings& settings) {
+int run_daemon(const DaemonSettings& settings, const sources::SourceRegistry& sources) {
   std::string error;
   const auto bridge_config = make_bridge_config(settings.config, error);
   if (!bridge_config) {
@@ -439,7 +439,7 @@ int run_daemon(const DaemonSettings& settings) {
     spdlog::error("configuration: {}: {}", e->field, e->message);
     return kExitBadInput;
   }
-  auto source = sources::make_source(settings.config.mocap.source);
+  auto source = sources.open(settings.config.mocap.source.text);
   if (const auto* e = std::get_if<std::string>(&source)) {
     spdlog::error("source {}: {}", settings.config.mocap.source.text, *e);
     return kExitBadInput;

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "mocaplink/config/config.hpp"
+#include "mocaplink/sources/registry.hpp"
 
 namespace mocaplink::app {
 
@@ -25,7 +26,8 @@ struct DaemonSettings {
 };
 
 /// Runs until SIGINT/SIGTERM (or the source finishes) and returns the exit code. Logs go to the
-/// default spdlog logger.
-[[nodiscard]] int run_daemon(const DaemonSettings& settings);
+/// default spdlog logger. The source is opened through `sources`.
+[[nodiscard]] int run_daemon(const DaemonSettings& settings,
+                             const sources::SourceRegistry& sources);
 
 }  // namespace mocaplink::app

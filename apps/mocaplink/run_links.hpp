@@ -19,9 +19,9 @@ struct VehicleLink {
   std::uint64_t last_signing_10us = 0;  ///< timestamp of the latest signed frame sent (0: none)
 };
 
-/// Builds (does not start) the vehicle's link. With a signing key, incoming frames are verified
-/// and unsigned ones rejected. For serial links, logs a warning when the profile's traffic
-/// (profile_bytes_per_second) exceeds what the baud rate carries (baud / 10 bytes/s).
+/// Builds (does not start) the vehicle's link (io::make_link). With a signing key, incoming frames
+/// are verified and unsigned ones rejected. For serial links, logs a warning when the profile's
+/// traffic (profile_bytes_per_second) exceeds what the baud rate carries (baud / 10 bytes/s).
 [[nodiscard]] VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& vehicle);
 
 }  // namespace mocaplink::app

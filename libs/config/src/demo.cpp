@@ -4,7 +4,7 @@ namespace mocaplink::config {
 
 Config demo_config() {
   Config config;
-  config.mocap.source = parse_source_url("sim://").value();
+  config.mocap.source = SourceUrl{"sim://", "sim"};
   // The original ViconMAVLink's default origin (Urbana, IL), kept so demo logs compare directly.
   config.origin = Origin{40.1156786, -88.2243507, 222.196};
   Vehicle demo;

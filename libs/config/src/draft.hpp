@@ -85,6 +85,9 @@ struct VehicleDraft {
 struct ConfigDraft {
   Where document;  ///< FILE:1:1, where keys of absent tables are reported missing
   std::optional<Where> mocap_header;
+  /// Judges [mocap] source / --source when given (the caller's source registry); empty: the
+  /// SCHEME://… shape only.
+  SourceValidator validate_source;
   Field<SourceUrl> source;
   Field<Axis> up;
   Field<North> north;

@@ -81,10 +81,14 @@ MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
   check_perpendicular(
       axis_use(d.body_forward, mocap.body_forward, "body_forward", table, "mocap.body_forward"),
       axis_use(d.body_up, mocap.body_up, "body_up", table, "mocap.body_up"), diagnostics);
-  if (mocap.source.kind == SourceKind::natnet && !d.up.present && d.source.value) {
-    diagnostics.warning(d.source.where, d.source.key.empty() ? "mocap.source" : d.source.key,
-                        "Motive streams Y-up unless its Up Axis setting is Z; set [mocap] up "
-                        "(and body_up) to \"+y\" if yours does");
+  if (d.source.value && d.validate_source) {
+    // The source's URL was judged when given (keys.cpp); its configuration warnings depend on the
+    // rest of [mocap] (e.g. a system that streams Y-up when `up` is not written).
+    const std::string key = d.source.key.empty() ? "mocap.source" : d.source.key;
+    for (auto& warning :
+         d.validate_source(d.source.value->text, SourceContext{d.up.present}).warnings) {
+      diagnostics.warning(d.source.where, key, std::move(warning));
+    }
   }
   return mocap;
 }

@@ -61,7 +61,14 @@ void set_optional(ConfigDraft& d, std::optional<double>& slot, const Value& valu
 // ---- [mocap] ----
 
 void mocap_source(ConfigDraft& d, const Value& v, Diagnostics& diag) {
-  assign(d.source, v, parse_source_url(v.text()), diag);
+  // The shape here; what the scheme and its options mean, the caller's source validator says.
+  auto parsed = parse_source_url(v.text());
+  if (d.validate_source) {
+    if (auto error = d.validate_source(v.text(), SourceContext{}).error; !error.empty()) {
+      parsed = ValueOrError<SourceUrl>::failure(std::move(error));
+    }
+  }
+  assign(d.source, v, std::move(parsed), diag);
 }
 void mocap_up(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.up, v, parse_axis(v.text()), diag);

@@ -103,13 +103,16 @@ ConfigResult finish(const detail::ConfigDraft& draft, detail::Diagnostics& diagn
 
 }  // namespace
 
-ConfigResult parse_config(std::string_view toml_text, std::string_view filename) {
-  return load_config(toml_text, filename, CommandLineOverrides{});
+ConfigResult parse_config(std::string_view toml_text, std::string_view filename,
+                          const SourceValidator& validate_source) {
+  return load_config(toml_text, filename, CommandLineOverrides{}, validate_source);
 }
 
 ConfigResult load_config(std::string_view toml_text, std::string_view filename,
-                         const CommandLineOverrides& overrides) {
+                         const CommandLineOverrides& overrides,
+                         const SourceValidator& validate_source) {
   detail::ConfigDraft draft;
+  draft.validate_source = validate_source;
   detail::Diagnostics diagnostics;
   if (!detail::read_toml(toml_text, filename, draft, diagnostics)) {
     // Nothing after a syntax error is known; more messages would only mislead.
@@ -123,8 +126,9 @@ ConfigResult load_config(std::string_view toml_text, std::string_view filename,
 }
 
 ConfigResult apply_overrides(const Config& base, const CommandLineOverrides& overrides,
-                             std::string_view base_name) {
+                             std::string_view base_name, const SourceValidator& validate_source) {
   detail::ConfigDraft draft = detail::draft_from_config(base, base_name);
+  draft.validate_source = validate_source;
   detail::Diagnostics diagnostics;
   detail::apply_command_line(overrides.source, overrides.http, overrides.vehicles, draft,
                              diagnostics);

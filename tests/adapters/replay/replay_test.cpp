@@ -79,7 +79,7 @@ struct Collected {
 };
 
 std::unique_ptr<ReplaySource> open_ok(const std::string& path, double speed, bool loop = false) {
-  auto made = ReplaySource::open(ReplayConfig{path, speed, loop}, "replay://" + path);
+  auto made = ReplaySource::open(ReplayOptions{path, speed, loop}, "replay://" + path);
   if (auto* error = std::get_if<std::string>(&made)) {
     ADD_FAILURE() << *error;
     return nullptr;
@@ -160,7 +160,7 @@ TEST(ReplaySource, MalformedLineMidFileStopsWithFileAndLine) {
 
 TEST(ReplaySource, OpenRejectsMissingAndForeignFiles) {
   const auto error = [](const std::string& path) {
-    auto made = ReplaySource::open(ReplayConfig{path, 1.0, false}, "replay://" + path);
+    auto made = ReplaySource::open(ReplayOptions{path, 1.0, false}, "replay://" + path);
     return std::holds_alternative<std::string>(made) ? std::get<std::string>(made) : std::string();
   };
   EXPECT_NE(error("/nonexistent/run.csv").find("cannot open '/nonexistent/run.csv'"),

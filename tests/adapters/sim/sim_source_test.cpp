@@ -11,7 +11,7 @@ namespace mocaplink::sources {
 namespace {
 
 TEST(SimSource, DeliversTheWorldsFramesAndFinishes) {
-  SimConfig c;
+  SimOptions c;
   c.rate_hz = 1000.0;  // 60 frames in ~60 ms
   c.frames = 60;
   c.drop = 0.2;
@@ -54,7 +54,7 @@ TEST(SimSource, DeliversTheWorldsFramesAndFinishes) {
 TEST(SimSource, StopInterruptsTheWaitForTheNextFrameAndIsIdempotent) {
   // Frame 1 comes at once, frame 2 only 1000 s later: stop() returning at all (within ctest's
   // timeout) shows that it wakes the source's wait instead of sleeping until the next frame.
-  SimConfig c;
+  SimOptions c;
   c.rate_hz = 0.001;
   c.frames = 0;  // endless
   SimSource source(c, "sim://?rate_hz=0.001");

@@ -11,8 +11,8 @@
 namespace mocaplink::sources {
 namespace {
 
-SimConfig noiseless(std::size_t bodies = 3) {
-  SimConfig c;
+SimOptions noiseless(std::size_t bodies = 3) {
+  SimOptions c;
   c.bodies = static_cast<std::uint32_t>(bodies);
   c.noise_mm = 0.0;
   c.noise_deg = 0.0;
@@ -20,7 +20,7 @@ SimConfig noiseless(std::size_t bodies = 3) {
 }
 
 TEST(SimWorld, SameSeedGivesIdenticalFramesWhateverTheOrderOfRequests) {
-  SimConfig c;
+  SimOptions c;
   c.seed = 42;
   c.occlude = 0.2;
   c.outliers = 0.05;
@@ -42,7 +42,7 @@ TEST(SimWorld, SameSeedGivesIdenticalFramesWhateverTheOrderOfRequests) {
 }
 
 TEST(SimWorld, DifferentSeedsGiveDifferentNoise) {
-  SimConfig c1, c2;
+  SimOptions c1, c2;
   c2.seed = 2;
   const auto f1 = SimWorld(c1).frame(10), f2 = SimWorld(c2).frame(10);
   EXPECT_NE(f1.bodies[0].p_world_m, f2.bodies[0].p_world_m);
@@ -70,7 +70,7 @@ TEST(SimWorld, NoiselessOutputIsTheGroundTruth) {
 }
 
 TEST(SimWorld, NoiseHasTheConfiguredStandardDeviation) {
-  SimConfig c;
+  SimOptions c;
   c.noise_mm = 2.0;
   const SimWorld world(c);
   double sum_sq = 0.0;
@@ -143,7 +143,7 @@ TEST(SimWorld, MovingBodiesPointTheirNoseAlongTheVelocity) {
 }
 
 TEST(SimWorld, DropsOcclusionsAndOutliersFollowTheirProbabilities) {
-  SimConfig c = noiseless(4);
+  SimOptions c = noiseless(4);
   c.drop = 0.1;
   c.occlude = 0.25;
   c.occlude_s = 0.1;  // 20 frames per slot at 200 Hz
@@ -178,18 +178,18 @@ TEST(SimWorld, DropsOcclusionsAndOutliersFollowTheirProbabilities) {
   }
 }
 
-TEST(SimConfig, GuardRefusesConfigsOutsideTheDocumentedRanges) {
-  // URLs are range-checked by config::parse_source_url; this guard is for configs built in code.
-  EXPECT_EQ(validate_sim_config(SimConfig{}), "");
-  SimConfig c;
+TEST(SimOptions, GuardRefusesConfigsOutsideTheDocumentedRanges) {
+  // URLs are range-checked by parse_sim_options; this guard is for options built in code.
+  EXPECT_EQ(validate_sim_options(SimOptions{}), "");
+  SimOptions c;
   c.bodies = 0;
-  EXPECT_NE(validate_sim_config(c).find("bodies must be"), std::string::npos);
-  c = SimConfig{};
+  EXPECT_NE(validate_sim_options(c).find("bodies must be"), std::string::npos);
+  c = SimOptions{};
   c.rate_hz = 0.0;
-  EXPECT_NE(validate_sim_config(c).find("rate_hz must be"), std::string::npos);
-  c = SimConfig{};
+  EXPECT_NE(validate_sim_options(c).find("rate_hz must be"), std::string::npos);
+  c = SimOptions{};
   c.drop = 1.0;
-  EXPECT_NE(validate_sim_config(c).find("drop must be"), std::string::npos);
+  EXPECT_NE(validate_sim_options(c).find("drop must be"), std::string::npos);
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ TEST(RecordCommand, SimToCsvToReplayGivesTheSameFrames) {
   const auto& recording = std::get<mocaplink::wire::Recording>(parsed);
   EXPECT_EQ(recording.header.source, sim_url);
   EXPECT_EQ(recording.header.rate_hz, 1000.0);
-  mocaplink::sources::SimConfig config;
+  mocaplink::sources::SimOptions config;
   config.bodies = 3;
   config.rate_hz = 1000;
   config.drop = 0.1;

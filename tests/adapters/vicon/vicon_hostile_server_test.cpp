@@ -118,7 +118,7 @@ TEST(ViconHostileServer, CountsEveryFaultReconnectsAndStillDecodes) {
   HostileServer server(std::move(scripts));
 
   ViconSourceOptions o;
-  o.target = ViconUrl{"127.0.0.1", server.port(), vw::StreamMode::server_push};
+  o.target = ViconOptions{"127.0.0.1", server.port(), vw::StreamMode::server_push};
   o.backoff_initial = std::chrono::milliseconds(10);
   o.backoff_max = std::chrono::milliseconds(40);
   o.max_body_bytes = 1024 * 1024;

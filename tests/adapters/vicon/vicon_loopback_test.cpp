@@ -38,7 +38,7 @@ std::unique_ptr<ViconServer> start_server(std::uint16_t port, double offset_m,
 
 ViconSourceOptions client_options(std::uint16_t port, StreamMode mode) {
   ViconSourceOptions o;
-  o.target = ViconUrl{"127.0.0.1", port, mode};
+  o.target = ViconOptions{"127.0.0.1", port, mode};
   o.backoff_initial = std::chrono::milliseconds(20);
   o.backoff_max = std::chrono::milliseconds(200);
   return o;

@@ -98,7 +98,7 @@ TEST(ViconServeCli, ServesSimBodiesToOurClient) {
   const auto port = static_cast<std::uint16_t>(std::stoi(address.substr(address.rfind(':') + 1)));
 
   ViconSourceOptions o;
-  o.target = ViconUrl{"127.0.0.1", port, wire::vicon::StreamMode::server_push};
+  o.target = ViconOptions{"127.0.0.1", port, wire::vicon::StreamMode::server_push};
   ViconSource client(o, "vicon://127.0.0.1");
   test::Collector got;
   client.start(got.frame_sink(), got.state_sink());

@@ -78,8 +78,8 @@ rate = 50
                 ": 2 errors\n");
 }
 
-TEST(CheckCommand, SourceNotBuiltInIsAWarning) {
-  // A valid file for a source this binary lacks: `run` would refuse it, so check says so.
+TEST(CheckCommand, SourceNotBuiltInIsAnError) {
+  // A source this binary lacks: `run` refuses it, and so does check, with the same message.
   const auto path = write_temp("qtm.toml", R"([mocap]
 source = "qtm://qtm-pc"
 [[vehicle]]
@@ -91,10 +91,12 @@ profile = "px4"
 )");
   const auto run = run_check(path);
   std::filesystem::remove(path);
-  EXPECT_EQ(run.exit_code, 0) << run.stderr_text;
-  EXPECT_EQ(run.stderr_text, "warning: " + path +
-                                 ": mocap.source: this mocaplink was built without qtm:// "
-                                 "(available: sim, replay, vicon); run will refuse it\n");
+  EXPECT_EQ(run.exit_code, 1) << run.stderr_text;
+  EXPECT_EQ(run.stdout_text, "");
+  EXPECT_EQ(run.stderr_text, path +
+                                 ":2:10: mocap.source: unknown source scheme \"qtm\" (one of: "
+                                 "replay, sim, vicon)\n" +
+                                 path + ": 1 error\n");
 }
 
 TEST(CheckCommand, SyntaxErrorExitsOne) {

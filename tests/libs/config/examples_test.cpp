@@ -24,8 +24,8 @@ TEST(Examples, LabWithThreeVehicles) {
   ASSERT_TRUE(result.ok()) << (result.errors.empty() ? "" : to_string(result.errors[0]));
   EXPECT_THAT(result.warnings, testing::IsEmpty());
   const Config& c = *result.config;
-  EXPECT_EQ(c.mocap.source.kind, SourceKind::vicon);
-  EXPECT_EQ(c.mocap.source.host, "192.168.1.3");
+  EXPECT_EQ(c.mocap.source.scheme, "vicon");
+  EXPECT_EQ(c.mocap.source.text, "vicon://192.168.1.3?mode=push");
   ASSERT_TRUE(c.origin.has_value());
   ASSERT_EQ(c.vehicles.size(), 3u);
   EXPECT_EQ(c.vehicles[0].profile, Profile::px4);
@@ -43,11 +43,11 @@ TEST(Examples, SinglePx4Quad) {
   ASSERT_TRUE(result.ok()) << (result.errors.empty() ? "" : to_string(result.errors[0]));
   EXPECT_THAT(result.warnings, testing::IsEmpty());
   const Config& c = *result.config;
-  EXPECT_EQ(c.mocap.source.kind, SourceKind::natnet);
-  EXPECT_EQ(c.mocap.up, Axis::pos_y);
+  EXPECT_EQ(c.mocap.source.scheme, "vicon");
+  EXPECT_EQ(c.mocap.up, Axis::pos_z);
   ASSERT_EQ(c.vehicles.size(), 1u);
   EXPECT_EQ(c.vehicles[0].profile, Profile::px4);
-  EXPECT_EQ(c.vehicles[0].body_up, Axis::pos_y);
+  EXPECT_EQ(c.vehicles[0].body_up, Axis::pos_z);
   EXPECT_EQ(c.vehicles[0].rate_hz, 50.0);
 }
 

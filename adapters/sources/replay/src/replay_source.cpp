@@ -67,7 +67,7 @@ std::string describe(const std::string& path, const wire::RecordingError& error)
 
 }  // namespace
 
-std::variant<std::unique_ptr<ReplaySource>, std::string> ReplaySource::open(ReplayConfig config,
+std::variant<std::unique_ptr<ReplaySource>, std::string> ReplaySource::open(ReplayOptions config,
                                                                             std::string url) {
   LineReader lines(config.path);
   if (!lines.is_open()) return "replay://: cannot open '" + config.path + "'";
@@ -83,7 +83,7 @@ std::variant<std::unique_ptr<ReplaySource>, std::string> ReplaySource::open(Repl
   return std::unique_ptr<ReplaySource>(new ReplaySource(std::move(config), std::move(url)));
 }
 
-ReplaySource::ReplaySource(ReplayConfig config, std::string url)
+ReplaySource::ReplaySource(ReplayOptions config, std::string url)
     : config_(std::move(config)), url_(std::move(url)) {}
 
 ReplaySource::~ReplaySource() {

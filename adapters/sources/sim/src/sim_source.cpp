@@ -8,7 +8,7 @@
 #include "mocaplink/io/clock.hpp"
 
 namespace mocaplink::sources {
-SimSource::SimSource(SimConfig config, std::string url)
+SimSource::SimSource(SimOptions config, std::string url)
     : world_(std::move(config)), url_(std::move(url)) {}
 
 SimSource::~SimSource() {
@@ -32,7 +32,7 @@ void SimSource::stop() {
 }
 
 void SimSource::run(FrameSink on_frame, StateSink on_state) {
-  const SimConfig& config = world_.config();
+  const SimOptions& config = world_.config();
   if (on_state) {
     std::array<char, 96> detail{};
     std::snprintf(detail.data(), detail.size(), "simulated, %u bodies at %g Hz", config.bodies,

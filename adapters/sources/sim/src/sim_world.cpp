@@ -78,8 +78,8 @@ struct Wave {
 
 }  // namespace
 
-SimWorld::SimWorld(SimConfig config) : config_(std::move(config)) {
-  if (auto problem = validate_sim_config(config_); !problem.empty()) {
+SimWorld::SimWorld(SimOptions config) : config_(std::move(config)) {
+  if (auto problem = validate_sim_options(config_); !problem.empty()) {
     std::fprintf(stderr, "SimWorld: invalid config: %s\n", problem.c_str());
     std::abort();
   }

@@ -5,6 +5,7 @@
 #include <deque>
 #include <mutex>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -283,6 +284,14 @@ void ViconServer::stop() {
   impl_->stop();
   if (thread_.joinable()) thread_.join();
   impl_.reset();
+}
+
+std::string ViconServer::summary() const {
+  const auto& c = counters_;
+  return std::to_string(c.frames.load()) + " frames, " + std::to_string(c.clients_accepted.load()) +
+         " clients, " + std::to_string(c.frames_dropped.load()) +
+         " frames dropped for slow clients, " + std::to_string(c.malformed_requests.load()) +
+         " malformed requests";
 }
 
 }  // namespace mocaplink::sources

@@ -9,6 +9,7 @@
 
 #include <asio.hpp>
 
+#include "mocaplink/io/clock.hpp"
 #include "mocaplink/wire/vicon_client_stream.hpp"
 #include "mocaplink/wire/vicon_mocap_frame.hpp"
 
@@ -19,12 +20,6 @@ using asio::ip::tcp;
 using SteadyClock = std::chrono::steady_clock;
 
 namespace {
-
-core::HostTime host_now() {
-  return core::host_time_from_ns(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(SteadyClock::now().time_since_epoch())
-          .count());
-}
 
 // Our requests are a few dozen bytes each; more than this many unwritten means the socket is stuck.
 constexpr std::size_t kMaxQueuedWrites = 64;
@@ -243,7 +238,7 @@ class ViconSource::Session {
     vw::MappedFrame mapped = vw::to_mocap_frame(decoded);
     owner_.vicon_counters_.invalid_poses += mapped.invalid_poses;
     ++owner_.counters_.frames;
-    if (on_frame_) on_frame_(std::move(mapped.frame), host_now());
+    if (on_frame_) on_frame_(std::move(mapped.frame), io::host_now());
   }
 
   void pull_now() {

@@ -38,19 +38,23 @@ struct CommandLineOverrides {
 
 /// Parses and validates a TOML configuration. `filename` is only used in error locations.
 /// Never throws for bad input; the TOML parser stops at the first syntax error, so a file with a
-/// syntax error reports that one error.
-ConfigResult parse_config(std::string_view toml_text, std::string_view filename);
+/// syntax error reports that one error. [mocap] source is judged by `validate_source` (the
+/// commands pass their source registry's; empty: only the SCHEME://… shape is checked).
+ConfigResult parse_config(std::string_view toml_text, std::string_view filename,
+                          const SourceValidator& validate_source = {});
 
 /// parse_config, then the command-line overrides, then validation of the combination: a file
 /// without [mocap] source is fine when `overrides.source` is set. Errors from options name the
 /// option ("--vehicle 2: rate_hz: ...").
 ConfigResult load_config(std::string_view toml_text, std::string_view filename,
-                         const CommandLineOverrides& overrides);
+                         const CommandLineOverrides& overrides,
+                         const SourceValidator& validate_source = {});
 
 /// Applies command-line overrides to an existing valid Config (e.g. demo_config() when no file is
 /// given). Cross-checks that involve base vehicles name them as coming from `base_name`.
 ConfigResult apply_overrides(const Config& base, const CommandLineOverrides& overrides,
-                             std::string_view base_name = "built-in demo");
+                             std::string_view base_name = "built-in demo",
+                             const SourceValidator& validate_source = {});
 
 /// One key of a [[vehicle]] table as a typed value, the way a JSON object gives it (the dashboard's
 /// POST /api/vehicles). An integer is accepted where a number is expected.

@@ -1,7 +1,8 @@
-// The one interface every mocap source implements (vicon, vicon_udp, natnet, vrpn, qtm, sim,
-// replay). A Source owns its socket/file and, when it blocks, its own thread; it hands each frame
-// to the FrameSink on that thread. The consumer (Station owner) must make the sink thread-safe,
-// typically a bounded queue with an overflow counter (DESIGN.md, issue 5).
+// The one interface every mocap source implements (today vicon, sim, replay, each in its own
+// folder adapters/sources/<name>/). A Source owns its socket/file and, when it blocks, its own
+// thread; it hands each frame to the FrameSink on that thread. The consumer (Station owner) must
+// make the sink thread-safe, typically a bounded queue with an overflow counter (DESIGN.md, issue
+// 5).
 #pragma once
 
 #include <atomic>

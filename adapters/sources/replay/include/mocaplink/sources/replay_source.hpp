@@ -9,7 +9,8 @@
 #include <thread>
 #include <variant>
 
-#include "mocaplink/sources/replay_config.hpp"
+#include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/replay_options.hpp"
 #include "mocaplink/sources/source.hpp"
 
 namespace mocaplink::sources {
@@ -26,7 +27,7 @@ class ReplaySource final : public Source {
   /// Opens the file and checks that it starts like a recording (header comment and column line),
   /// so that a wrong path or a wrong file is reported before anything starts.
   [[nodiscard]] static std::variant<std::unique_ptr<ReplaySource>, std::string> open(
-      ReplayConfig config, std::string url);
+      ReplayOptions config, std::string url);
   ~ReplaySource() override;
 
   void start(FrameSink on_frame, StateSink on_state) override;
@@ -35,13 +36,13 @@ class ReplaySource final : public Source {
   [[nodiscard]] const SourceCounters& counters() const override { return counters_; }
 
  private:
-  ReplaySource(ReplayConfig config, std::string url);
+  ReplaySource(ReplayOptions config, std::string url);
   void run(const FrameSink& on_frame, const StateSink& on_state);
   /// Waits until `deadline` or stop(); true if stopping.
   template <typename TimePoint>
   bool wait_until(TimePoint deadline);
 
-  ReplayConfig config_;
+  ReplayOptions config_;
   std::string url_;
   SourceCounters counters_;
   std::mutex mutex_;
@@ -49,5 +50,8 @@ class ReplaySource final : public Source {
   bool stopping_ = false;  // guarded by mutex_
   std::thread thread_;
 };
+
+/// replay:// for the source registry: parse_replay_options, then ReplaySource::open.
+[[nodiscard]] SourceDescriptor replay_source_descriptor();
 
 }  // namespace mocaplink::sources

@@ -6,6 +6,7 @@
 #include <string>
 #include <thread>
 
+#include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/sim_world.hpp"
 #include "mocaplink/sources/source.hpp"
 
@@ -18,8 +19,8 @@ namespace mocaplink::sources {
 /// Thread-safety: start/stop from one controlling thread; callbacks run on the source's thread.
 class SimSource final : public Source {
  public:
-  /// `config` must pass validate_sim_config. `url` is shown by url().
-  SimSource(SimConfig config, std::string url);
+  /// `config` must pass validate_sim_options. `url` is shown by url().
+  SimSource(SimOptions config, std::string url);
   ~SimSource() override;
 
   void start(FrameSink on_frame, StateSink on_state) override;
@@ -39,5 +40,8 @@ class SimSource final : public Source {
   bool stopping_ = false;  // guarded by mutex_
   std::thread thread_;
 };
+
+/// sim:// for the source registry: parse_sim_options, then a SimSource.
+[[nodiscard]] SourceDescriptor sim_source_descriptor();
 
 }  // namespace mocaplink::sources

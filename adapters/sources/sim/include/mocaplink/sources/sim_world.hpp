@@ -27,7 +27,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/time.hpp"
-#include "mocaplink/sources/sim_config.hpp"
+#include "mocaplink/sources/sim_options.hpp"
 
 namespace mocaplink::sources {
 
@@ -41,10 +41,10 @@ struct BodyTruth {
 
 class SimWorld {
  public:
-  /// `config` must pass validate_sim_config (programming error otherwise: aborts).
-  explicit SimWorld(SimConfig config);
+  /// `config` must pass validate_sim_options (programming error otherwise: aborts).
+  explicit SimWorld(SimOptions config);
 
-  [[nodiscard]] const SimConfig& config() const { return config_; }
+  [[nodiscard]] const SimOptions& config() const { return config_; }
   [[nodiscard]] std::size_t body_count() const { return config_.bodies; }
   /// "Body1" for index 0 (DESIGN.md: simulated bodies are Body1, Body2, ...).
   [[nodiscard]] static std::string body_name(std::size_t index);
@@ -69,7 +69,7 @@ class SimWorld {
   [[nodiscard]] core::MocapFrame frame(std::uint64_t frame_number) const;
 
  private:
-  SimConfig config_;
+  SimOptions config_;
 };
 
 }  // namespace mocaplink::sources

@@ -23,6 +23,7 @@
 #include <variant>
 
 #include "mocaplink/core/mocap_frame.hpp"
+#include "mocaplink/sources/descriptor.hpp"
 
 namespace mocaplink::sources {
 
@@ -47,26 +48,26 @@ struct ViconServerCounters {
   std::atomic<std::uint64_t> malformed_requests{0};  ///< client packets that were not DataStream
 };
 
-class ViconServer {
+class ViconServer final : public Emulator {
  public:
   /// Returns the frame to serve at tick `tick` (0, 1, 2, …), or nullopt for "no frame this
   /// tick" (a dropped frame). Called on the server's thread.
-  using FrameProvider = std::function<std::optional<core::MocapFrame>(std::uint64_t tick)>;
+  using FrameProvider = Emulator::FrameProvider;
 
   explicit ViconServer(ViconServerOptions options);
-  ~ViconServer();
-  ViconServer(const ViconServer&) = delete;
-  ViconServer& operator=(const ViconServer&) = delete;
+  ~ViconServer() override;
 
   /// Binds, listens and starts the server's thread. `provider` may be empty (publish() only).
   /// Errors: bad listen address, port in use, … as a message. Call once.
-  [[nodiscard]] std::optional<std::string> start(FrameProvider provider);
+  [[nodiscard]] std::optional<std::string> start(FrameProvider provider) override;
   /// The bound port (after a successful start()).
-  [[nodiscard]] std::uint16_t port() const { return port_; }
+  [[nodiscard]] std::uint16_t port() const override { return port_; }
   /// Serves `frame` to the clients as the newest frame; thread-safe.
-  void publish(core::MocapFrame frame);
+  void publish(core::MocapFrame frame) override;
   /// Closes every connection and joins the thread. Idempotent.
-  void stop();
+  void stop() override;
+  /// "N frames, N clients, N frames dropped for slow clients, N malformed requests".
+  [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const ViconServerCounters& counters() const { return counters_; }
 
  private:

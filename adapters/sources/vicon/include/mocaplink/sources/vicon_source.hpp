@@ -23,14 +23,15 @@
 #include <thread>
 #include <variant>
 
+#include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/source.hpp"
-#include "mocaplink/sources/vicon_url.hpp"
+#include "mocaplink/sources/vicon_options.hpp"
 #include "mocaplink/wire/vicon_packet.hpp"
 
 namespace mocaplink::sources {
 
 struct ViconSourceOptions {
-  ViconUrl target;
+  ViconOptions target;
   std::chrono::milliseconds backoff_initial{500};
   std::chrono::milliseconds backoff_max{5000};
   std::chrono::milliseconds connect_timeout{5000};  ///< the SDK's default (§1)
@@ -83,5 +84,9 @@ class ViconSource final : public Source {
   std::thread thread_;
   bool started_ = false;
 };
+
+/// vicon:// for the source registry: parse_vicon_options, a ViconSource, and the ViconServer
+/// emulator for `serve --protocol vicon`.
+[[nodiscard]] SourceDescriptor vicon_source_descriptor();
 
 }  // namespace mocaplink::sources

@@ -1,18 +1,21 @@
-// Configuration and pacing of `replay://file.csv[?speed=1&loop=0]` (DESIGN.md "Source URLs"; the
-// URL itself is parsed by config::parse_source_url).
+// Options and pacing of `replay://file.csv[?speed=1&loop=0]` (DESIGN.md "Source URLs",
+// docs/sources.md "replay://").
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
 
+#include "mocaplink/config/url.hpp"
 #include "mocaplink/core/time.hpp"
 
 namespace mocaplink::sources {
 
-struct ReplayConfig {
+struct ReplayOptions {
   /// The recording, as written after "replay://" (relative to the working directory, or absolute
   /// with a third slash: replay:///data/run.csv). Taken literally: no percent-decoding, no '?'.
   std::string path;
@@ -23,12 +26,18 @@ struct ReplayConfig {
   bool loop = false;
 };
 
+/// The `replay://` query keys.
+inline constexpr std::array<std::string_view, 2> kReplayOptionKeys = {"speed", "loop"};
+
+/// A split `replay://` URL (query keys already checked against kReplayOptionKeys) → its options.
+[[nodiscard]] config::ValueOrError<ReplayOptions> parse_replay_options(const config::UrlParts& url);
+
 /// When each recorded frame is due, as an offset from the start of playback: the first frame at
 /// 0, the others at (capture − first capture) / speed; at speed 0 everything is due at once.
 /// Pure: ReplaySource turns offsets into host deadlines. Not thread-safe (one per playback).
 class ReplaySchedule {
  public:
-  /// `speed` as in ReplayConfig.
+  /// `speed` as in ReplayOptions.
   explicit ReplaySchedule(double speed) : speed_(speed) {}
   /// Offset at which a frame captured at `capture` is due. Capture times must not decrease
   /// within one pass (the recording reader guarantees it); an earlier one is due immediately.

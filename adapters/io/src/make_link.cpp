@@ -1,0 +1,26 @@
+#include "mocaplink/io/make_link.hpp"
+
+#include <utility>
+
+#include "mocaplink/io/link_serial.hpp"
+#include "mocaplink/io/link_tcp.hpp"
+#include "mocaplink/io/link_udp.hpp"
+
+namespace mocaplink::io {
+
+std::unique_ptr<Link> make_link(asio::io_context& loop, const config::LinkUrl& url,
+                                LinkOptions options) {
+  switch (url.kind) {
+    case config::LinkKind::udp:
+      return std::make_unique<UdpLink>(loop, url.address.host, url.address.port,
+                                       std::move(options));
+    case config::LinkKind::tcp:
+      return std::make_unique<TcpLink>(loop, url.address.host, url.address.port,
+                                       std::move(options));
+    case config::LinkKind::serial:
+      break;
+  }
+  return std::make_unique<SerialLink>(loop, url.device, url.baud, std::move(options));
+}
+
+}  // namespace mocaplink::io
