@@ -1,6 +1,6 @@
 // `mocaplink run [--config FILE] [--source URL] [--vehicle SPEC]... [--http ADDR] [--record DIR]`
-// (DESIGN.md "Command line"; behaviour, logs and exit codes in docs/daemon.md). No arguments: the
-// demo (simulated source, one vehicle at udp://127.0.0.1:14550).
+// (DESIGN.md "Command line"; behaviour, logs and exit codes in docs/daemon.md). Neither --config,
+// --source nor --vehicle: the demo (simulated source, one vehicle at udp://127.0.0.1:14550).
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -56,6 +56,9 @@ int run_command(const RunOptions& options, const sources::SourceRegistry& source
   spdlog::info("mocaplink {}: source {}, {} vehicle{}", MOCAPLINK_VERSION,
                settings.config.mocap.source.text, settings.config.vehicles.size(),
                settings.config.vehicles.size() == 1 ? "" : "s");
+  if (settings.config.vehicles.empty()) {
+    spdlog::warn("no vehicle configured: nothing is sent until one is added from the dashboard");
+  }
   return run_daemon(settings, sources);
 }
 

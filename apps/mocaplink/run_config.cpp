@@ -118,6 +118,10 @@ std::optional<config::Config> load_run_config(const RunOptions& options,
   overrides.vehicles = options.vehicles;
   config::ConfigResult result;
   std::string name = "built-in demo";
+  // The demo is only for a run that names no source and no vehicle at all: any --config, --source
+  // or --vehicle starts from what the user gave, so no demo vehicle ever sends Body1's poses to
+  // 127.0.0.1:14550 (where QGroundControl and simulators listen) behind the user's back.
+  const bool demo = !options.config_file && !options.source && options.vehicles.empty();
   if (options.config_file) {
     name = *options.config_file;
     std::ifstream in(*options.config_file, std::ios::binary);
@@ -128,8 +132,17 @@ std::optional<config::Config> load_run_config(const RunOptions& options,
     std::ostringstream text;
     text << in.rdbuf();
     result = config::load_config(text.str(), name, overrides, validate_source);
-  } else {
+  } else if (demo) {
     result = config::apply_overrides(config::demo_config(), overrides, name, validate_source);
+  } else if (!options.source) {
+    std::fprintf(err,
+                 "mocaplink run: --vehicle needs a mocap source: give --source URL or --config "
+                 "FILE (the demo runs only without --config, --source and --vehicle); nothing "
+                 "was sent\n");
+    return std::nullopt;
+  } else {
+    name = "command line";
+    result = config::load_config("", name, overrides, validate_source);
   }
   print(err, result);
   if (!result.ok()) {

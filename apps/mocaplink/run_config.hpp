@@ -15,17 +15,19 @@ namespace mocaplink::app {
 
 /// The options of `mocaplink run` as given (DESIGN.md "Command line").
 struct RunOptions {
-  std::optional<std::string> config_file;  ///< --config FILE; none: the built-in demo
-  std::optional<std::string> source;       ///< --source URL
-  std::vector<std::string> vehicles;       ///< --vehicle SPEC, in order
-  std::optional<std::string> http;         ///< --http ADDR
-  std::optional<std::string> record_dir;   ///< --record DIR
+  std::optional<std::string>
+      config_file;                    ///< --config FILE (none, no --source, no --vehicle: the demo)
+  std::optional<std::string> source;  ///< --source URL
+  std::vector<std::string> vehicles;  ///< --vehicle SPEC, in order
+  std::optional<std::string> http;    ///< --http ADDR
+  std::optional<std::string> record_dir;  ///< --record DIR
 };
 
-/// Reads the file (if any), applies the overrides (to the demo config when no file is given),
-/// and prints every error ("FILE:LINE:COL: key: message") and warning ("warning: ...") to `err`.
-/// nullopt when the configuration is unusable. The source is judged by `validate_source` (the
-/// source registry's, as for `check`).
+/// Reads the file (if any) and applies the overrides. The built-in demo is the base only when
+/// neither a file, --source nor --vehicle is given (--http still applies to it); otherwise the
+/// configuration is exactly what the file and the options say. Prints every error ("FILE:LINE:COL:
+/// key: message") and warning ("warning: ...") to `err`. nullopt when the configuration is
+/// unusable. The source is judged by `validate_source` (the source registry's, as for `check`).
 [[nodiscard]] std::optional<config::Config> load_run_config(
     const RunOptions& options, const config::SourceValidator& validate_source, std::FILE* err);
 

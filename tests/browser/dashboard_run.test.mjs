@@ -60,10 +60,11 @@ describe('dashboard of mocaplink run (sim source)', () => {
 
   before(async () => {
     receiver = await startReceiver();
-    // The demo (sim source, vehicle "demo" following Body1 with px4 at 50 Hz), its link pointed
-    // at our receiver and the dashboard on a free port.
-    const started = await startProcess(binary, ['run', '--http', '127.0.0.1:0',
-      '--vehicle', `demo:link=udp://127.0.0.1:${receiver.port}`],
+    // The demo's source and vehicle (sim, "demo" following Body1 with px4 at 50 Hz), the link
+    // pointed at our receiver and the dashboard on a free port. Given in full: any --source or
+    // --vehicle starts from what the options say, not from the demo.
+    const started = await startProcess(binary, ['run', '--http', '127.0.0.1:0', '--source', 'sim://',
+      '--vehicle', `demo:body=Body1,link=udp://127.0.0.1:${receiver.port},system_id=1,profile=px4`],
     /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//, log);
     daemon = started.child;
     browser = await launchBrowser();

@@ -131,8 +131,7 @@ async function waitForLog(proc, re, timeoutMs = 10000) {
 }
 
 /// Writes a run configuration: `source` and vehicles given as objects of [[vehicle]] keys
-/// (strings quoted, numbers as is). Tests use files rather than --vehicle so that the demo's
-/// vehicle (udp://127.0.0.1:14550) is not part of the run.
+/// (strings quoted, numbers as is).
 function writeConfig(file, source, vehicles, extra = '') {
   const value = (v) => (typeof v === 'number' ? String(v) : JSON.stringify(v));
   const blocks = vehicles.map((v) => `[[vehicle]]\n${Object.entries(v)
