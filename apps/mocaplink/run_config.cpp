@@ -6,8 +6,6 @@
 #include "mocaplink/config/config_error.hpp"
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
-#include "mocaplink/mavlink/frame.hpp"
-#include "mocaplink/mavlink/messages.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -17,51 +15,6 @@ void print(std::FILE* err, const config::ConfigResult& result) {
   for (const auto& w : result.warnings) {
     std::fprintf(err, "warning: %s\n", config::to_string(w).c_str());
   }
-}
-
-core::Profile to_core(config::Profile p) {
-  switch (p) {
-    case config::Profile::px4:
-      return core::Profile::px4;
-    case config::Profile::ardupilot:
-      return core::Profile::ardupilot;
-    case config::Profile::px4_gps:
-      return core::Profile::px4_gps;
-    case config::Profile::ardupilot_gps:
-      return core::Profile::ardupilot_gps;
-    case config::Profile::classic:
-      return core::Profile::classic;
-    case config::Profile::custom:
-      return core::Profile::custom;
-  }
-  return core::Profile::custom;
-}
-
-core::MessageKind to_core(config::MessageKind k) {
-  switch (k) {
-    case config::MessageKind::odometry:
-      return core::MessageKind::odometry;
-    case config::MessageKind::vision_position_estimate:
-      return core::MessageKind::vision_position_estimate;
-    case config::MessageKind::vision_speed_estimate:
-      return core::MessageKind::vision_speed_estimate;
-    case config::MessageKind::att_pos_mocap:
-      return core::MessageKind::att_pos_mocap;
-    case config::MessageKind::hil_gps:
-      return core::MessageKind::hil_gps;
-    case config::MessageKind::gps_input:
-      return core::MessageKind::gps_input;
-    case config::MessageKind::local_position_ned:
-      return core::MessageKind::local_position_ned;
-  }
-  return core::MessageKind::odometry;
-}
-
-std::vector<core::MessageKind> to_core(const std::vector<config::MessageKind>& kinds) {
-  std::vector<core::MessageKind> out;
-  out.reserve(kinds.size());
-  for (const auto k : kinds) out.push_back(to_core(k));
-  return out;
 }
 
 core::TrackerConfig to_core(const config::TrackingSettings& t) {
@@ -76,35 +29,6 @@ core::TrackerConfig to_core(const config::TrackingSettings& t) {
   if (t.gate_min_m) c.gate_min_m = *t.gate_min_m;
   if (t.jump_confirm_frames) c.jump_confirm_frames = *t.jump_confirm_frames;
   return c;
-}
-
-/// Full MAVLink 2 frame size of a message kind (header 10 + payload + CRC 2).
-std::size_t frame_bytes(core::MessageKind kind) {
-  std::size_t payload = 0;
-  switch (kind) {
-    case core::MessageKind::odometry:
-      payload = mavlink::Odometry::kMaxLength;
-      break;
-    case core::MessageKind::vision_position_estimate:
-      payload = mavlink::VisionPositionEstimate::kMaxLength;
-      break;
-    case core::MessageKind::vision_speed_estimate:
-      payload = mavlink::VisionSpeedEstimate::kMaxLength;
-      break;
-    case core::MessageKind::att_pos_mocap:
-      payload = mavlink::AttPosMocap::kMaxLength;
-      break;
-    case core::MessageKind::hil_gps:
-      payload = mavlink::HilGps::kMaxLength;
-      break;
-    case core::MessageKind::gps_input:
-      payload = mavlink::GpsInput::kMaxLength;
-      break;
-    case core::MessageKind::local_position_ned:
-      payload = mavlink::LocalPositionNed::kMaxLength;
-      break;
-  }
-  return mavlink::kHeaderSizeV2 + payload + mavlink::kChecksumSize;
 }
 
 }  // namespace
@@ -175,8 +99,8 @@ std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std
   spec.body = v.body;
   spec.system_id = v.system_id;
   spec.component_id = v.component_id;
-  spec.profile = to_core(v.profile);
-  spec.messages = to_core(v.messages);
+  spec.profile = v.profile;
+  spec.messages = v.messages;
   spec.rate_hz = v.rate_hz;
   spec.signing_key = v.signing_key;
   // One physical channel per vehicle (mavlink-wire.md §7.3): link ids 1, 2, ... by slot
@@ -185,22 +109,6 @@ std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std
   spec.body_axes = *axes;
   spec.enabled = v.enabled;
   return spec;
-}
-
-double profile_bytes_per_second(const config::Vehicle& vehicle) {
-  const std::size_t signature = vehicle.signing_key ? mavlink::kSignatureSize : 0;
-  const auto set = core::messages_for(to_core(vehicle.profile), to_core(vehicle.messages));
-  double per_send = 0.0;
-  for (std::size_t k = 0; k < core::kMessageKindCount; ++k) {
-    const auto kind = static_cast<core::MessageKind>(k);
-    if (set.contains(kind)) per_send += static_cast<double>(frame_bytes(kind) + signature);
-  }
-  // 1 Hz each: HEARTBEAT, a TIMESYNC request and reply, SET_GPS_GLOBAL_ORIGIN.
-  const double clock_driven =
-      static_cast<double>(mavlink::kHeaderSizeV2 + mavlink::kChecksumSize + signature) * 4.0 +
-      static_cast<double>(mavlink::Heartbeat::kMaxLength + 2 * mavlink::Timesync::kMaxLength +
-                          mavlink::SetGpsGlobalOrigin::kMaxLength);
-  return per_send * vehicle.rate_hz + clock_driven;
 }
 
 }  // namespace mocaplink::app

@@ -1,11 +1,8 @@
 #include "run_links.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include "mocaplink/io/link_serial.hpp"
 #include "mocaplink/io/link_tcp.hpp"
 #include "mocaplink/io/link_udp.hpp"
-#include "run_config.hpp"
 
 namespace mocaplink::app {
 
@@ -26,20 +23,9 @@ VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& veh
       out.link = std::make_unique<io::TcpLink>(loop, url.address.host, url.address.port,
                                                std::move(options));
       break;
-    case config::LinkKind::serial: {
-      const double needed = profile_bytes_per_second(vehicle);
-      const double available = io::serial_bytes_per_second(url.baud);
-      if (needed > available) {
-        // autopilots.md §7: a full ODOMETRY frame is 245 bytes; 57600 baud carries ~23/s.
-        spdlog::warn(
-            "vehicle {}: profile {} at {:g} Hz needs up to {:.0f} bytes/s but {} baud carries "
-            "{:.0f}: frames will be dropped; lower rate_hz or raise the baud rate",
-            vehicle.name, config::to_string(vehicle.profile), vehicle.rate_hz, needed, url.baud,
-            available);
-      }
+    case config::LinkKind::serial:
       out.link = std::make_unique<io::SerialLink>(loop, url.device, url.baud, std::move(options));
       break;
-    }
   }
   return out;
 }

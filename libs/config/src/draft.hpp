@@ -72,8 +72,8 @@ struct VehicleDraft {
   Field<LinkUrl> link;
   Field<std::uint8_t> system_id;
   Field<std::uint8_t> component_id;
-  Field<Profile> profile;
-  Field<std::vector<MessageKind>> messages;
+  Field<core::Profile> profile;
+  Field<std::vector<core::MessageKind>> messages;
   Field<double> rate_hz;
   Field<std::optional<std::array<std::uint8_t, 32>>> signing_key;
   Field<Axis> body_forward;

@@ -111,14 +111,13 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   ok = require(v.system_id, v.mistyped, "system_id", v.header, key("system_id"), diagnostics) && ok;
   ok = require(v.profile, v.mistyped, "profile", v.header, key("profile"), diagnostics) && ok;
   Vehicle out;
-  out.profile = value_or(v.profile, Profile::px4);
+  out.profile = value_or(v.profile, core::Profile::px4);
   if (v.profile.value) {
-    const bool custom = out.profile == Profile::custom;
+    const bool custom = out.profile == core::Profile::custom;
     if (!custom && v.messages.present) {
-      diagnostics.error(
-          v.messages.where, v.messages.key,
-          std::string("messages is only allowed with profile = \"custom\"; profile \"") +
-              to_string(out.profile) + "\" sends a fixed set");
+      diagnostics.error(v.messages.where, v.messages.key,
+                        "messages is only allowed with profile = \"custom\"; profile \"" +
+                            std::string(core::to_string(out.profile)) + "\" sends a fixed set");
       ok = false;
     } else if (custom && v.messages.present && v.messages.value && v.messages.value->empty()) {
       diagnostics.error(v.messages.where, v.messages.key,
@@ -131,12 +130,11 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
       ok = false;
     }
   }
-  out.messages = value_or(v.messages, std::vector<MessageKind>{});
+  out.messages = value_or(v.messages, std::vector<core::MessageKind>{});
   const bool gps = (v.profile.value && needs_origin(out.profile)) ||
-                   std::any_of(out.messages.begin(), out.messages.end(),
-                               [](MessageKind m) { return needs_origin(m); });
+                   core::MessageSet(out.messages).needs_origin();
   if (gps && !have_origin && !d.origin_header) {
-    const bool by_profile = out.profile != Profile::custom;
+    const bool by_profile = out.profile != core::Profile::custom;
     const auto& where = by_profile ? v.profile.where : v.messages.where;
     diagnostics.error(where, by_profile ? v.profile.key : v.messages.key,
                       "GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin] table "
@@ -164,9 +162,17 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
                         "255 is the usual ground-station system id; a vehicle using it can mask "
                         "the GCS (protocols/autopilots.md §11.13)");
   }
-  if (out.profile == Profile::ardupilot && out.rate_hz > 50.0) {
+  if (out.profile == core::Profile::ardupilot && out.rate_hz > 50.0) {
     diagnostics.warning(v.rate_hz.where, v.rate_hz.key,
                         "ArduPilot's external-navigation input is meant for at most 50 Hz");
+  }
+  if (out.link.kind == LinkKind::serial) {
+    // The one bandwidth rule (core::serial_bandwidth_warning): `check`, `run` and a dashboard
+    // POST all report it from here.
+    const auto warning =
+        core::serial_bandwidth_warning(out.profile, core::messages_for(out.profile, out.messages),
+                                       out.rate_hz, out.signing_key.has_value(), out.link.baud);
+    if (warning) diagnostics.warning(v.link.where, v.link.key, *warning);
   }
   return out;
 }

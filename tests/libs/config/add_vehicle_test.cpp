@@ -43,7 +43,7 @@ TEST(AddVehicle, AppendsAResolvedVehicle) {
   EXPECT_EQ(to_string(v.link), "udp://127.0.0.1:14560");
   EXPECT_EQ(v.system_id, 2);
   EXPECT_EQ(v.component_id, kDefaultComponentId);
-  EXPECT_EQ(v.profile, Profile::ardupilot);
+  EXPECT_EQ(v.profile, core::Profile::ardupilot);
   EXPECT_EQ(v.rate_hz, 30.0);  // an integer where a number is expected
   EXPECT_EQ(v.body_forward, Axis::pos_y);
   EXPECT_TRUE(v.enabled);

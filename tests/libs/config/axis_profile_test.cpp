@@ -42,7 +42,7 @@ TEST(Profile, NamesAndOriginNeeds) {
   for (const char* name : {"px4", "ardupilot", "px4-gps", "ardupilot-gps", "classic", "custom"}) {
     const auto profile = parse_profile(name);
     ASSERT_TRUE(profile) << name;
-    EXPECT_STREQ(to_string(profile.value()), name);
+    EXPECT_EQ(core::to_string(profile.value()), name);
   }
   EXPECT_EQ(parse_profile("px4_gps").error(),
             "unknown profile \"px4_gps\"; did you mean \"px4-gps\"? (one of: px4, ardupilot, "
@@ -58,13 +58,13 @@ TEST(MessageKind, NamesAndOriginNeeds) {
                            "att_pos_mocap", "hil_gps", "gps_input", "local_position_ned"}) {
     const auto kind = parse_message_kind(name);
     ASSERT_TRUE(kind) << name;
-    EXPECT_STREQ(to_string(kind.value()), name);
+    EXPECT_EQ(core::to_string(kind.value()), name);
   }
-  EXPECT_TRUE(needs_origin(MessageKind::hil_gps));
-  EXPECT_TRUE(needs_origin(MessageKind::gps_input));
-  EXPECT_FALSE(needs_origin(MessageKind::odometry));
-  EXPECT_TRUE(needs_origin(Profile::classic));
-  EXPECT_FALSE(needs_origin(Profile::ardupilot));
+  EXPECT_TRUE(core::needs_origin(core::MessageKind::hil_gps));
+  EXPECT_TRUE(core::needs_origin(core::MessageKind::gps_input));
+  EXPECT_FALSE(core::needs_origin(core::MessageKind::odometry));
+  EXPECT_TRUE(needs_origin(core::Profile::classic));
+  EXPECT_FALSE(needs_origin(core::Profile::ardupilot));
   EXPECT_EQ(parse_message_kind("HIL_GPS").error(),
             "unknown message \"HIL_GPS\"; did you mean \"hil_gps\"? (one of: odometry, "
             "vision_position_estimate, vision_speed_estimate, att_pos_mocap, hil_gps, gps_input, "

@@ -91,10 +91,10 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(a.link.address, (HostPort{"sitl.local", 5760}));
   EXPECT_EQ(a.system_id, 42);
   EXPECT_EQ(a.component_id, 191);
-  EXPECT_EQ(a.profile, Profile::custom);
-  EXPECT_THAT(a.messages,
-              testing::ElementsAre(MessageKind::vision_position_estimate,
-                                   MessageKind::vision_speed_estimate, MessageKind::gps_input));
+  EXPECT_EQ(a.profile, core::Profile::custom);
+  EXPECT_THAT(a.messages, testing::ElementsAre(core::MessageKind::vision_position_estimate,
+                                               core::MessageKind::vision_speed_estimate,
+                                               core::MessageKind::gps_input));
   EXPECT_EQ(a.rate_hz, 30.5);
   ASSERT_TRUE(a.signing_key.has_value());
   for (std::size_t i = 0; i < 32; ++i) EXPECT_EQ((*a.signing_key)[i], i) << i;
@@ -104,7 +104,7 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
 
   const Vehicle& b = c.vehicles[1];
   EXPECT_EQ(b.name, "beta");
-  EXPECT_EQ(b.profile, Profile::classic);
+  EXPECT_EQ(b.profile, core::Profile::classic);
   EXPECT_EQ(b.component_id, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY
   EXPECT_EQ(b.rate_hz, 50.0);
   EXPECT_FALSE(b.signing_key.has_value());
@@ -521,6 +521,27 @@ TEST(ParseConfig, WarningsDoNotFail) {
                 "w.toml:15:11: vehicle[2].rate_hz: ArduPilot's external-navigation input is meant "
                 "for at most 50 Hz",
             }));
+}
+
+TEST(ParseConfig, SerialLinkTooSlowForTheProfileIsAWarning) {
+  const auto vehicle = [](const char* baud) {
+    return kMocap +
+           "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\nlink = \"serial:///dev/ttyUSB0?baud=" + baud +
+           "\"\nsystem_id = 1\nprofile = \"px4\"\n";
+  };
+  const auto slow = parse_config(vehicle("57600"), "s.toml");
+  ASSERT_TRUE(slow.ok()) << testing::PrintToString(error_lines(slow));
+  // MAVLink 2 frames are 12 bytes + payload (common.xml lengths with extensions): ODOMETRY 233 at
+  // 50 Hz = 50 × 245; HEARTBEAT 9, TIMESYNC 18 (request and reply) and SET_GPS_GLOBAL_ORIGIN 21 at
+  // 1 Hz = 4 × 12 + 66. 57600 baud at 10 bits a byte carries 5760 bytes/s.
+  EXPECT_EQ(warning_lines(slow),
+            (std::vector<std::string>{
+                "s.toml:6:8: vehicle[1].link: profile px4 at 50 Hz needs up to 12364 bytes/s but "
+                "57600 baud carries 5760: frames will be dropped; lower rate_hz or raise the baud "
+                "rate"}));
+  const auto fast = parse_config(vehicle("921600"), "f.toml");
+  ASSERT_TRUE(fast.ok());
+  EXPECT_THAT(fast.warnings, testing::IsEmpty());
 }
 
 TEST(ParseConfig, NoVehiclesIsAWarning) {

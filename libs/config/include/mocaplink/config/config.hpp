@@ -15,6 +15,8 @@
 #include "mocaplink/config/net_address.hpp"
 #include "mocaplink/config/profile.hpp"
 #include "mocaplink/config/source_url.hpp"
+#include "mocaplink/core/profile.hpp"
+#include "mocaplink/core/sender.hpp"
 
 namespace mocaplink::config {
 
@@ -39,7 +41,6 @@ struct Origin {
 /// (protocols/autopilots.md §9), never like the autopilot (component 1).
 inline constexpr std::uint8_t kDefaultComponentId = 197;
 inline constexpr double kDefaultRateHz = 50.0;
-inline constexpr double kMaxRateHz = 500.0;
 
 /// One [[vehicle]]: a mocap body whose poses go to one autopilot over one link.
 struct Vehicle {
@@ -48,9 +49,9 @@ struct Vehicle {
   LinkUrl link;
   std::uint8_t system_id = 1;  ///< 1..255, unique per link; also the source sysid we send with
   std::uint8_t component_id = kDefaultComponentId;  ///< 2..255 (1 is the autopilot itself)
-  Profile profile = Profile::px4;
-  std::vector<MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
-  double rate_hz = kDefaultRateHz;    ///< 0 < rate ≤ 500; pose messages per second
+  core::Profile profile = core::Profile::px4;
+  std::vector<core::MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
+  double rate_hz = kDefaultRateHz;  ///< 0 < rate ≤ core::kMaxSenderRateHz; pose messages per second
   std::optional<std::array<std::uint8_t, 32>> signing_key;  ///< MAVLink 2 signing secret
   Axis body_forward = Axis::pos_x;  ///< resolved: the vehicle's override or [mocap]'s default
   Axis body_up = Axis::pos_z;       ///< resolved likewise; ⟂ body_forward
