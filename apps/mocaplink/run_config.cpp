@@ -17,20 +17,6 @@ void print(std::FILE* err, const config::ConfigResult& result) {
   }
 }
 
-core::TrackerConfig to_core(const config::TrackingSettings& t) {
-  core::TrackerConfig c;  // the core's defaults, overridden by what the file sets
-  if (t.loss_timeout_ms) c.loss_timeout_ms = *t.loss_timeout_ms;
-  if (t.reset_after_ms) c.reset_after_ms = *t.reset_after_ms;
-  if (t.position_noise_m) c.position_noise_m = *t.position_noise_m;
-  if (t.attitude_noise_rad) c.attitude_noise_rad = *t.attitude_noise_rad;
-  if (t.accel_noise_mps2) c.accel_noise_mps2 = *t.accel_noise_mps2;
-  if (t.angular_accel_noise_radps2) c.angular_accel_noise_radps2 = *t.angular_accel_noise_radps2;
-  if (t.gate_sigma) c.gate_sigma = *t.gate_sigma;
-  if (t.gate_min_m) c.gate_min_m = *t.gate_min_m;
-  if (t.jump_confirm_frames) c.jump_confirm_frames = *t.jump_confirm_frames;
-  return c;
-}
-
 }  // namespace
 
 std::optional<config::Config> load_run_config(const RunOptions& options, std::FILE* err) {
@@ -77,7 +63,7 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
     out.origin = core::GeodeticPosition{cfg.origin->latitude_deg, cfg.origin->longitude_deg,
                                         cfg.origin->altitude_m};
   }
-  out.tracking = to_core(cfg.tracking);
+  out.tracking = cfg.tracking;
   for (std::size_t i = 0; i < cfg.vehicles.size(); ++i) {
     auto spec = make_vehicle_spec(cfg.vehicles[i], i, error);
     if (!spec) return std::nullopt;

@@ -95,7 +95,7 @@ struct ConfigDraft {
   Field<double> longitude_deg;
   Field<double> altitude_m;
   std::vector<VehicleDraft> vehicles;
-  TrackingSettings tracking;
+  core::TrackerConfig tracking;  ///< the core's defaults, overridden key by key
   /// Where each [tracking] key was set: {bare name, place, displayed key}.
   struct TrackingSite {
     std::string name;

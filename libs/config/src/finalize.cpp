@@ -218,18 +218,7 @@ void cross_check_vehicles(const ConfigDraft& d, Diagnostics& diagnostics) {
 /// the tracker's defaults for the keys not set, so that `check` rejects what `run` would.
 void check_tracking(const ConfigDraft& d, Diagnostics& diagnostics) {
   if (d.tracking_sites.empty()) return;
-  const TrackingSettings& t = d.tracking;
-  core::TrackerConfig merged;
-  merged.loss_timeout_ms = t.loss_timeout_ms.value_or(merged.loss_timeout_ms);
-  merged.reset_after_ms = t.reset_after_ms.value_or(merged.reset_after_ms);
-  merged.position_noise_m = t.position_noise_m.value_or(merged.position_noise_m);
-  merged.attitude_noise_rad = t.attitude_noise_rad.value_or(merged.attitude_noise_rad);
-  merged.accel_noise_mps2 = t.accel_noise_mps2.value_or(merged.accel_noise_mps2);
-  merged.angular_accel_noise_radps2 =
-      t.angular_accel_noise_radps2.value_or(merged.angular_accel_noise_radps2);
-  merged.gate_sigma = t.gate_sigma.value_or(merged.gate_sigma);
-  merged.gate_min_m = t.gate_min_m.value_or(merged.gate_min_m);
-  merged.jump_confirm_frames = t.jump_confirm_frames.value_or(merged.jump_confirm_frames);
+  const core::TrackerConfig& merged = d.tracking;  // the defaults with the keys set
   const auto problem = core::validate(merged);
   if (!problem) return;
   const auto& sites = d.tracking_sites;

@@ -48,13 +48,12 @@ void note_tracking_site(ConfigDraft& d, const Value& value) {
       {dot == std::string::npos ? value.key : value.key.substr(dot + 1), value.where, value.key});
 }
 
-void set_optional(ConfigDraft& d, std::optional<double>& slot, const Value& value,
-                  ValueOrError<double> parsed, Diagnostics& diagnostics) {
+void set_optional(ConfigDraft& d, double& slot, const Value& value, ValueOrError<double> parsed,
+                  Diagnostics& diagnostics) {
   note_tracking_site(d, value);
   if (parsed) {
     slot = parsed.value();
   } else {
-    slot.reset();
     diagnostics.error(value.where, value.key, parsed.error());
   }
 }
@@ -104,7 +103,7 @@ constexpr std::array<KeySpec<ConfigDraft>, 3> kOriginKeys = {{
     {"altitude_m", ValueType::number, origin_altitude},
 }};
 
-// ---- [tracking] (sanity bounds only; the core owns the defaults) ----
+// ---- [tracking] (sanity bounds only; the core owns the defaults and the cross-key rules) ----
 
 void tracking_loss(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   set_optional(d, d.tracking.loss_timeout_ms, v, number_in(v.number(), 0.0, 60000.0, false), diag);
@@ -137,7 +136,6 @@ void tracking_jump_frames(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   if (v.integer() >= 1 && v.integer() <= 1000) {
     d.tracking.jump_confirm_frames = static_cast<std::uint32_t>(v.integer());
   } else {
-    d.tracking.jump_confirm_frames.reset();
     diag.error(v.where, v.key,
                "must be an integer from 1 to 1000, got " + std::to_string(v.integer()));
   }

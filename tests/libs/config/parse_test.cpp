@@ -145,15 +145,17 @@ profile = "px4"
   EXPECT_EQ(c.mocap.body_forward, Axis::pos_x);
   EXPECT_EQ(c.mocap.body_up, Axis::pos_z);
   EXPECT_FALSE(c.origin.has_value());
-  EXPECT_FALSE(c.tracking.loss_timeout_ms.has_value());
-  EXPECT_FALSE(c.tracking.reset_after_ms.has_value());
-  EXPECT_FALSE(c.tracking.position_noise_m.has_value());
-  EXPECT_FALSE(c.tracking.attitude_noise_rad.has_value());
-  EXPECT_FALSE(c.tracking.accel_noise_mps2.has_value());
-  EXPECT_FALSE(c.tracking.angular_accel_noise_radps2.has_value());
-  EXPECT_FALSE(c.tracking.gate_sigma.has_value());
-  EXPECT_FALSE(c.tracking.gate_min_m.has_value());
-  EXPECT_FALSE(c.tracking.jump_confirm_frames.has_value());
+  // No [tracking]: every value is the tracker's own default (docs/config.md "[tracking]").
+  const core::TrackerConfig defaults;
+  EXPECT_EQ(c.tracking.loss_timeout_ms, defaults.loss_timeout_ms);
+  EXPECT_EQ(c.tracking.reset_after_ms, defaults.reset_after_ms);
+  EXPECT_EQ(c.tracking.position_noise_m, defaults.position_noise_m);
+  EXPECT_EQ(c.tracking.attitude_noise_rad, defaults.attitude_noise_rad);
+  EXPECT_EQ(c.tracking.accel_noise_mps2, defaults.accel_noise_mps2);
+  EXPECT_EQ(c.tracking.angular_accel_noise_radps2, defaults.angular_accel_noise_radps2);
+  EXPECT_EQ(c.tracking.gate_sigma, defaults.gate_sigma);
+  EXPECT_EQ(c.tracking.gate_min_m, defaults.gate_min_m);
+  EXPECT_EQ(c.tracking.jump_confirm_frames, defaults.jump_confirm_frames);
   EXPECT_EQ(c.http.listen, (HostPort{"127.0.0.1", 8080}));
   EXPECT_EQ(c.http.token, "");
   ASSERT_EQ(c.vehicles.size(), 1u);

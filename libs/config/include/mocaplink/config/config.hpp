@@ -17,6 +17,7 @@
 #include "mocaplink/config/source_url.hpp"
 #include "mocaplink/core/profile.hpp"
 #include "mocaplink/core/sender.hpp"
+#include "mocaplink/core/tracker.hpp"
 
 namespace mocaplink::config {
 
@@ -58,20 +59,6 @@ struct Vehicle {
   bool enabled = true;              ///< false: configured but nothing is sent
 };
 
-/// [tracking]: optional tuning of the per-body tracker. Every value is std::nullopt unless the
-/// file sets it; the core owns the defaults. Ranges are sanity bounds checked here.
-struct TrackingSettings {
-  std::optional<double> loss_timeout_ms;             ///< 0 < v ≤ 60000
-  std::optional<double> reset_after_ms;              ///< 0 ≤ v ≤ 600000
-  std::optional<double> position_noise_m;            ///< 0 < v ≤ 10
-  std::optional<double> attitude_noise_rad;          ///< 0 < v ≤ π
-  std::optional<double> accel_noise_mps2;            ///< 0 < v ≤ 1000
-  std::optional<double> angular_accel_noise_radps2;  ///< 0 < v ≤ 10000
-  std::optional<double> gate_sigma;                  ///< 0 < v ≤ 100
-  std::optional<double> gate_min_m;                  ///< 0 ≤ v ≤ 100
-  std::optional<std::uint32_t> jump_confirm_frames;  ///< 1 ≤ v ≤ 1000
-};
-
 /// [http]: the dashboard / REST API.
 struct HttpSettings {
   HostPort listen{"127.0.0.1", 8080};  ///< port 0 = any free port (tests)
@@ -83,7 +70,9 @@ struct Config {
   std::optional<Origin>
       origin;  ///< required by px4-gps, ardupilot-gps, classic, hil_gps, gps_input
   std::vector<Vehicle> vehicles;
-  TrackingSettings tracking;
+  /// [tracking]: the tracker settings — the core's defaults with the keys the file sets (sanity
+  /// bounds checked per key here, the tracker's cross-key rules by core::validate).
+  core::TrackerConfig tracking;
   HttpSettings http;
 };
 
