@@ -24,16 +24,16 @@ void require(bool condition) {
 }
 
 void check_config(const Config& c) {
-  require(mocaplink::config::are_perpendicular(c.mocap.body_forward, c.mocap.body_up));
-  if (const auto* north = std::get_if<mocaplink::config::Axis>(&c.mocap.north)) {
-    require(mocaplink::config::are_perpendicular(c.mocap.up, *north));
+  require(mocaplink::core::are_perpendicular(c.mocap.body_forward, c.mocap.body_up));
+  if (const auto* north = std::get_if<mocaplink::core::SignedAxis>(&c.mocap.north)) {
+    require(mocaplink::core::are_perpendicular(c.mocap.up, *north));
   }
   for (std::size_t i = 0; i < c.vehicles.size(); ++i) {
     const auto& v = c.vehicles[i];
     require(!v.name.empty() && v.name.size() <= 64 && !v.body.empty());
     require(v.system_id >= 1 && v.component_id >= 2);
     require(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::core::kMaxSenderRateHz);
-    require(mocaplink::config::are_perpendicular(v.body_forward, v.body_up));
+    require(mocaplink::core::are_perpendicular(v.body_forward, v.body_up));
     require((v.profile == mocaplink::core::Profile::custom) == !v.messages.empty());
     for (std::size_t j = 0; j < i; ++j) {
       require(c.vehicles[j].name != v.name);

@@ -52,8 +52,7 @@ std::optional<config::Config> load_run_config(const RunOptions& options, std::FI
 std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
                                                      std::string& error) {
   core::BridgeConfig out;
-  const auto world = core::WorldAxisMapping::parse(config::to_string(cfg.mocap.up),
-                                                   config::to_string(cfg.mocap.north));
+  const auto world = core::WorldAxisMapping::make(cfg.mocap.up, cfg.mocap.north);
   if (!world) {
     error = "[mocap] " + world.error().field + ": " + world.error().message;
     return std::nullopt;
@@ -74,8 +73,7 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
 
 std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std::size_t slot,
                                                    std::string& error) {
-  const auto axes =
-      core::BodyAxisMapping::parse(config::to_string(v.body_forward), config::to_string(v.body_up));
+  const auto axes = core::BodyAxisMapping::make(v.body_forward, v.body_up);
   if (!axes) {
     error = "vehicle " + v.name + ": " + axes.error().field + ": " + axes.error().message;
     return std::nullopt;

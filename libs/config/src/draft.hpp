@@ -76,8 +76,8 @@ struct VehicleDraft {
   Field<std::vector<core::MessageKind>> messages;
   Field<double> rate_hz;
   Field<std::optional<std::array<std::uint8_t, 32>>> signing_key;
-  Field<Axis> body_forward;
-  Field<Axis> body_up;
+  Field<core::SignedAxis> body_forward;
+  Field<core::SignedAxis> body_up;
   Field<bool> enabled;
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")
 };
@@ -86,10 +86,10 @@ struct ConfigDraft {
   Where document;  ///< FILE:1:1, where keys of absent tables are reported missing
   std::optional<Where> mocap_header;
   Field<SourceUrl> source;
-  Field<Axis> up;
-  Field<North> north;
-  Field<Axis> body_forward;
-  Field<Axis> body_up;
+  Field<core::SignedAxis> up;
+  Field<core::North> north;
+  Field<core::SignedAxis> body_forward;
+  Field<core::SignedAxis> body_up;
   std::optional<Where> origin_header;
   Field<double> latitude_deg;
   Field<double> longitude_deg;

@@ -36,7 +36,7 @@ bool require(const Field<T>& field, const std::vector<std::string>& mistyped, st
 /// One axis-valued key as used by a right-angle rule: its effective value and where it was
 /// written (or the table it defaults in).
 struct AxisUse {
-  Axis axis = Axis::pos_x;
+  core::SignedAxis axis = core::axis::pos_x;
   bool written = false;
   bool invalid = false;  ///< written with a bad value: already reported, skip the rule
   Where where;
@@ -45,8 +45,8 @@ struct AxisUse {
 };
 
 template <typename T>
-AxisUse axis_use(const Field<T>& field, Axis effective, std::string name, const Where& table,
-                 const std::string& default_key) {
+AxisUse axis_use(const Field<T>& field, core::SignedAxis effective, std::string name,
+                 const Where& table, const std::string& default_key) {
   return AxisUse{effective,
                  field.present,
                  field.present && !field.value,
@@ -58,11 +58,11 @@ AxisUse axis_use(const Field<T>& field, Axis effective, std::string name, const 
 /// Checks that two axes are at right angles; the error goes to the one that was written (the
 /// second if both were) and names both.
 void check_perpendicular(const AxisUse& a, const AxisUse& b, Diagnostics& diagnostics) {
-  if (a.invalid || b.invalid || are_perpendicular(a.axis, b.axis)) return;
+  if (a.invalid || b.invalid || core::are_perpendicular(a.axis, b.axis)) return;
   const AxisUse& blamed = (b.written || !a.written) ? b : a;
   diagnostics.error(blamed.where, blamed.key,
-                    b.name + " (" + to_string(b.axis) + ") must be at right angles to " + a.name +
-                        " (" + to_string(a.axis) + ")");
+                    b.name + " (" + core::to_string(b.axis) + ") must be at right angles to " +
+                        a.name + " (" + core::to_string(a.axis) + ")");
 }
 
 MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
@@ -70,11 +70,11 @@ MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
   const Where table = d.mocap_header.value_or(d.document);
   if (require(d.source, d.mistyped, "source", table, "mocap.source", diagnostics))
     mocap.source = *d.source.value;
-  mocap.up = value_or(d.up, Axis::pos_z);
-  mocap.north = value_or(d.north, North{Axis::pos_x});
-  mocap.body_forward = value_or(d.body_forward, Axis::pos_x);
-  mocap.body_up = value_or(d.body_up, Axis::pos_z);
-  if (const auto* north_axis = std::get_if<Axis>(&mocap.north)) {
+  mocap.up = value_or(d.up, core::axis::pos_z);
+  mocap.north = value_or(d.north, core::North{core::axis::pos_x});
+  mocap.body_forward = value_or(d.body_forward, core::axis::pos_x);
+  mocap.body_up = value_or(d.body_up, core::axis::pos_z);
+  if (const auto* north_axis = std::get_if<core::SignedAxis>(&mocap.north)) {
     check_perpendicular(axis_use(d.up, mocap.up, "up", table, "mocap.up"),
                         axis_use(d.north, *north_axis, "north", table, "mocap.north"), diagnostics);
   }

@@ -11,23 +11,22 @@ TEST(Axis, RoundTripsEverySpelling) {
   for (const char* name : {"+x", "-x", "+y", "-y", "+z", "-z"}) {
     const auto axis = parse_axis(name);
     ASSERT_TRUE(axis) << name;
-    EXPECT_STREQ(to_string(axis.value()), name);
+    EXPECT_EQ(core::to_string(axis.value()), name);
   }
-  EXPECT_EQ(axis_index(Axis::neg_y), 1);
-  EXPECT_EQ(axis_sign(Axis::neg_y), -1);
-  EXPECT_EQ(axis_sign(Axis::pos_z), 1);
-  EXPECT_TRUE(are_perpendicular(Axis::pos_x, Axis::neg_z));
-  EXPECT_FALSE(are_perpendicular(Axis::pos_x, Axis::neg_x));
+  EXPECT_EQ(parse_axis("-y").value(), (core::SignedAxis{1, -1}));
+  EXPECT_EQ(parse_axis("+z").value(), (core::SignedAxis{2, 1}));
+  EXPECT_TRUE(core::are_perpendicular(core::axis::pos_x, core::axis::neg_z));
+  EXPECT_FALSE(core::are_perpendicular(core::axis::pos_x, core::axis::neg_x));
   EXPECT_EQ(parse_axis("x").error(), "expected one of +x, -x, +y, -y, +z, -z, got \"x\"");
   EXPECT_EQ(parse_axis("+X").error(), "expected one of +x, -x, +y, -y, +z, -z, got \"+X\"");
 }
 
 TEST(North, AxisOrAngle) {
-  EXPECT_EQ(parse_north("-y").value(), North{Axis::neg_y});
-  EXPECT_EQ(parse_north("angle:37.5").value(), North{NorthAngle{37.5}});
-  EXPECT_EQ(parse_north("angle:-360").value(), North{NorthAngle{-360.0}});
-  EXPECT_EQ(to_string(North{NorthAngle{37.5}}), "angle:37.5");
-  EXPECT_EQ(to_string(North{Axis::pos_x}), "+x");
+  EXPECT_EQ(parse_north("-y").value(), core::North{core::axis::neg_y});
+  EXPECT_EQ(parse_north("angle:37.5").value(), core::North{core::NorthAngle{37.5}});
+  EXPECT_EQ(parse_north("angle:-360").value(), core::North{core::NorthAngle{-360.0}});
+  EXPECT_EQ(core::to_string(core::North{core::NorthAngle{37.5}}), "angle:37.5");
+  EXPECT_EQ(core::to_string(core::North{core::axis::pos_x}), "+x");
   EXPECT_EQ(parse_north("angle:400").error(),
             "angle must be a number of degrees from -360 to 360, as in \"angle:37.5\", got "
             "\"angle:400\"");

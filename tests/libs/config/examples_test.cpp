@@ -44,10 +44,10 @@ TEST(Examples, SinglePx4Quad) {
   EXPECT_THAT(result.warnings, testing::IsEmpty());
   const Config& c = *result.config;
   EXPECT_EQ(c.mocap.source.kind, SourceKind::natnet);
-  EXPECT_EQ(c.mocap.up, Axis::pos_y);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_y);
   ASSERT_EQ(c.vehicles.size(), 1u);
   EXPECT_EQ(c.vehicles[0].profile, core::Profile::px4);
-  EXPECT_EQ(c.vehicles[0].body_up, Axis::pos_y);
+  EXPECT_EQ(c.vehicles[0].body_up, core::axis::pos_y);
   EXPECT_EQ(c.vehicles[0].rate_hz, 50.0);
 }
 

@@ -18,7 +18,7 @@ TEST(DemoConfig, MatchesTheDesign) {
   const Config c = demo_config();
   EXPECT_EQ(c.mocap.source.kind, SourceKind::sim);
   EXPECT_EQ(c.mocap.source.text, "sim://");
-  EXPECT_EQ(c.mocap.up, Axis::pos_z);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_z);
   ASSERT_EQ(c.vehicles.size(), 1u);
   const Vehicle& v = c.vehicles[0];
   EXPECT_EQ(v.name, "demo");
@@ -81,7 +81,7 @@ TEST(Overrides, EveryKeyFromTheCommandLine) {
   EXPECT_EQ(v.rate_hz, 12.5);
   ASSERT_TRUE(v.signing_key.has_value());
   EXPECT_EQ((*v.signing_key)[0], 0xAA);
-  EXPECT_EQ(v.body_forward, Axis::neg_y);
+  EXPECT_EQ(v.body_forward, core::axis::neg_y);
   EXPECT_FALSE(v.enabled);
 }
 

@@ -73,10 +73,10 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(c.mocap.source.kind, SourceKind::qtm);
   EXPECT_EQ(c.mocap.source.host, "10.0.0.7");
   EXPECT_EQ(c.mocap.source.port, 22224);
-  EXPECT_EQ(c.mocap.up, Axis::pos_y);
-  EXPECT_EQ(c.mocap.north, North{NorthAngle{-12.5}});
-  EXPECT_EQ(c.mocap.body_forward, Axis::pos_z);
-  EXPECT_EQ(c.mocap.body_up, Axis::pos_y);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_y);
+  EXPECT_EQ(c.mocap.north, core::North{core::NorthAngle{-12.5}});
+  EXPECT_EQ(c.mocap.body_forward, core::axis::pos_z);
+  EXPECT_EQ(c.mocap.body_up, core::axis::pos_y);
 
   ASSERT_TRUE(c.origin.has_value());
   EXPECT_EQ(c.origin->latitude_deg, 47.3977419);
@@ -98,8 +98,8 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(a.rate_hz, 30.5);
   ASSERT_TRUE(a.signing_key.has_value());
   for (std::size_t i = 0; i < 32; ++i) EXPECT_EQ((*a.signing_key)[i], i) << i;
-  EXPECT_EQ(a.body_forward, Axis::neg_x);  // the vehicle's own
-  EXPECT_EQ(a.body_up, Axis::pos_y);       // inherited from [mocap]
+  EXPECT_EQ(a.body_forward, core::axis::neg_x);  // the vehicle's own
+  EXPECT_EQ(a.body_up, core::axis::pos_y);       // inherited from [mocap]
   EXPECT_FALSE(a.enabled);
 
   const Vehicle& b = c.vehicles[1];
@@ -109,8 +109,8 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(b.rate_hz, 50.0);
   EXPECT_FALSE(b.signing_key.has_value());
   EXPECT_TRUE(b.messages.empty());
-  EXPECT_EQ(b.body_forward, Axis::pos_z);
-  EXPECT_EQ(b.body_up, Axis::pos_y);
+  EXPECT_EQ(b.body_forward, core::axis::pos_z);
+  EXPECT_EQ(b.body_up, core::axis::pos_y);
   EXPECT_TRUE(b.enabled);
 
   EXPECT_EQ(c.tracking.loss_timeout_ms, 250.0);
@@ -140,10 +140,10 @@ profile = "px4"
                                    "min.toml");
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   const Config& c = *result.config;
-  EXPECT_EQ(c.mocap.up, Axis::pos_z);
-  EXPECT_EQ(c.mocap.north, North{Axis::pos_x});
-  EXPECT_EQ(c.mocap.body_forward, Axis::pos_x);
-  EXPECT_EQ(c.mocap.body_up, Axis::pos_z);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_z);
+  EXPECT_EQ(c.mocap.north, core::North{core::axis::pos_x});
+  EXPECT_EQ(c.mocap.body_forward, core::axis::pos_x);
+  EXPECT_EQ(c.mocap.body_up, core::axis::pos_z);
   EXPECT_FALSE(c.origin.has_value());
   // No [tracking]: every value is the tracker's own default (docs/config.md "[tracking]").
   const core::TrackerConfig defaults;

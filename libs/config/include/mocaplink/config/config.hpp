@@ -23,11 +23,11 @@ namespace mocaplink::config {
 
 /// [mocap]: where poses come from and how the mocap world frame maps to NED.
 struct MocapSettings {
-  SourceUrl source;                 ///< required
-  Axis up = Axis::pos_z;            ///< mocap axis pointing up (Vicon/QTM: +z; Motive default: +y)
-  North north = Axis::pos_x;        ///< mocap axis or angle that becomes north; ⟂ up
-  Axis body_forward = Axis::pos_x;  ///< default rigid-body axis pointing out of the nose
-  Axis body_up = Axis::pos_z;       ///< default rigid-body axis pointing up when level; ⟂ forward
+  SourceUrl source;                         ///< required
+  core::SignedAxis up = core::axis::pos_z;  ///< mocap axis pointing up (Vicon/QTM +z; Motive +y)
+  core::North north = core::axis::pos_x;    ///< mocap axis or angle that becomes north; ⟂ up
+  core::SignedAxis body_forward = core::axis::pos_x;  ///< default rigid-body axis out of the nose
+  core::SignedAxis body_up = core::axis::pos_z;  ///< default body axis up when level; ⟂ forward
 };
 
 /// [origin]: the geodetic position of the mocap frame's origin (WGS84; altitude above mean sea
@@ -54,9 +54,9 @@ struct Vehicle {
   std::vector<core::MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
   double rate_hz = kDefaultRateHz;  ///< 0 < rate ≤ core::kMaxSenderRateHz; pose messages per second
   std::optional<std::array<std::uint8_t, 32>> signing_key;  ///< MAVLink 2 signing secret
-  Axis body_forward = Axis::pos_x;  ///< resolved: the vehicle's override or [mocap]'s default
-  Axis body_up = Axis::pos_z;       ///< resolved likewise; ⟂ body_forward
-  bool enabled = true;              ///< false: configured but nothing is sent
+  core::SignedAxis body_forward = core::axis::pos_x;        ///< the vehicle's override or [mocap]'s
+  core::SignedAxis body_up = core::axis::pos_z;             ///< resolved likewise; ⟂ body_forward
+  bool enabled = true;  ///< false: configured but nothing is sent
 };
 
 /// [http]: the dashboard / REST API.
