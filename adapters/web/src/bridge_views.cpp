@@ -117,18 +117,6 @@ LinkState link_state(core::LinkState state, bool down) {
   return state == core::LinkState::alive ? LinkState::up : LinkState::silent;
 }
 
-AgreementVerdict verdict(core::AgreementVerdict v) {
-  switch (v) {
-    case core::AgreementVerdict::unknown:
-      return AgreementVerdict::unknown;
-    case core::AgreementVerdict::agrees:
-      return AgreementVerdict::agree;
-    case core::AgreementVerdict::disagrees:
-      return AgreementVerdict::disagree;
-  }
-  return AgreementVerdict::unknown;
-}
-
 }  // namespace
 
 std::string mav_type_name(std::uint8_t type) {
@@ -236,7 +224,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
       v.timesync.state = TimesyncState::waiting;
     }
     v.origin = state.origin;
-    v.agreement = AgreementView{verdict(state.agreement.verdict), state.agreement.yaw_offset_deg,
+    v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
                                 state.agreement.position_offset_m};
     status.vehicles.push_back(std::move(v));
   }
