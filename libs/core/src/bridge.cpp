@@ -301,7 +301,10 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
   }
   if (reaction.agreement_changed) {
     const Agreement& a = v.state.agreement();
-    std::string text = "estimate " + std::string(to_string(a.verdict));
+    // A sentence for the log ("estimate agrees"), not the API spelling of the verdict.
+    std::string text = a.verdict == AgreementVerdict::agree      ? "estimate agrees"
+                       : a.verdict == AgreementVerdict::disagree ? "estimate disagrees"
+                                                                 : "estimate unknown";
     if (a.yaw_offset_deg) text += ", yaw offset " + std::to_string(*a.yaw_offset_deg) + " deg";
     if (a.position_offset_m) {
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
