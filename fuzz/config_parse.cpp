@@ -26,17 +26,17 @@ void require(bool condition) {
 }
 
 void check_config(const Config& c) {
-  require(mocaplink::config::are_perpendicular(c.mocap.body_forward, c.mocap.body_up));
-  if (const auto* north = std::get_if<mocaplink::config::Axis>(&c.mocap.north)) {
-    require(mocaplink::config::are_perpendicular(c.mocap.up, *north));
+  require(mocaplink::core::are_perpendicular(c.mocap.body_forward, c.mocap.body_up));
+  if (const auto* north = std::get_if<mocaplink::core::SignedAxis>(&c.mocap.north)) {
+    require(mocaplink::core::are_perpendicular(c.mocap.up, *north));
   }
   for (std::size_t i = 0; i < c.vehicles.size(); ++i) {
     const auto& v = c.vehicles[i];
     require(!v.name.empty() && v.name.size() <= 64 && !v.body.empty());
     require(v.system_id >= 1 && v.component_id >= 2);
-    require(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::config::kMaxRateHz);
-    require(mocaplink::config::are_perpendicular(v.body_forward, v.body_up));
-    require((v.profile == mocaplink::config::Profile::custom) == !v.messages.empty());
+    require(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::core::kMaxSenderRateHz);
+    require(mocaplink::core::are_perpendicular(v.body_forward, v.body_up));
+    require((v.profile == mocaplink::core::Profile::custom) == !v.messages.empty());
     for (std::size_t j = 0; j < i; ++j) {
       require(c.vehicles[j].name != v.name);
       require(!(c.vehicles[j].link == v.link && c.vehicles[j].system_id == v.system_id));

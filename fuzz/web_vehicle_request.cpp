@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "mocaplink/core/sender.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 
 namespace {
@@ -35,8 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } else {
     const VehicleSpec& s = spec.value();
     if (!is_valid_vehicle_name(s.name) || s.body.empty() || s.system_id == 0 ||
-        !(s.rate_hz > 0.0 && s.rate_hz <= kMaxRateHz) || !known_messages(s.messages) ||
-        (s.profile == "custom") == s.messages.empty()) {
+        !(s.rate_hz > 0.0 && s.rate_hz <= mocaplink::core::kMaxSenderRateHz) ||
+        !known_messages(s.messages) || (s.profile == "custom") == s.messages.empty()) {
       std::abort();
     }
   }
@@ -46,7 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } else {
     const VehiclePatch& p = patch.value();
     if (!p.rate_hz && !p.messages && !p.paused) std::abort();
-    if (p.rate_hz && !(*p.rate_hz > 0.0 && *p.rate_hz <= kMaxRateHz)) std::abort();
+    if (p.rate_hz && !(*p.rate_hz > 0.0 && *p.rate_hz <= mocaplink::core::kMaxSenderRateHz))
+      std::abort();
     if (p.messages && !known_messages(*p.messages)) std::abort();
   }
   return 0;

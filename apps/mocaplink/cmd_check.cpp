@@ -45,8 +45,8 @@ void print_summary(const config::Config& cfg) {
   for (const auto& v : cfg.vehicles) {
     std::printf("  %s: body %s, %s, system_id %u, profile %s, %g Hz%s%s\n", v.name.c_str(),
                 v.body.c_str(), config::to_string(v.link).c_str(),
-                static_cast<unsigned>(v.system_id), config::to_string(v.profile), v.rate_hz,
-                v.signing_key ? ", signed" : "", v.enabled ? "" : ", disabled");
+                static_cast<unsigned>(v.system_id), std::string(core::to_string(v.profile)).c_str(),
+                v.rate_hz, v.signing_key ? ", signed" : "", v.enabled ? "" : ", disabled");
   }
   std::printf("  dashboard: http://%s%s\n", config::to_string(cfg.http.listen).c_str(),
               cfg.http.token.empty() ? "" : " (token required)");

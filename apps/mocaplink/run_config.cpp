@@ -6,8 +6,6 @@
 #include "mocaplink/config/config_error.hpp"
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
-#include "mocaplink/mavlink/frame.hpp"
-#include "mocaplink/mavlink/messages.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -17,94 +15,6 @@ void print(std::FILE* err, const config::ConfigResult& result) {
   for (const auto& w : result.warnings) {
     std::fprintf(err, "warning: %s\n", config::to_string(w).c_str());
   }
-}
-
-core::Profile to_core(config::Profile p) {
-  switch (p) {
-    case config::Profile::px4:
-      return core::Profile::px4;
-    case config::Profile::ardupilot:
-      return core::Profile::ardupilot;
-    case config::Profile::px4_gps:
-      return core::Profile::px4_gps;
-    case config::Profile::ardupilot_gps:
-      return core::Profile::ardupilot_gps;
-    case config::Profile::classic:
-      return core::Profile::classic;
-    case config::Profile::custom:
-      return core::Profile::custom;
-  }
-  return core::Profile::custom;
-}
-
-core::MessageKind to_core(config::MessageKind k) {
-  switch (k) {
-    case config::MessageKind::odometry:
-      return core::MessageKind::odometry;
-    case config::MessageKind::vision_position_estimate:
-      return core::MessageKind::vision_position_estimate;
-    case config::MessageKind::vision_speed_estimate:
-      return core::MessageKind::vision_speed_estimate;
-    case config::MessageKind::att_pos_mocap:
-      return core::MessageKind::att_pos_mocap;
-    case config::MessageKind::hil_gps:
-      return core::MessageKind::hil_gps;
-    case config::MessageKind::gps_input:
-      return core::MessageKind::gps_input;
-    case config::MessageKind::local_position_ned:
-      return core::MessageKind::local_position_ned;
-  }
-  return core::MessageKind::odometry;
-}
-
-std::vector<core::MessageKind> to_core(const std::vector<config::MessageKind>& kinds) {
-  std::vector<core::MessageKind> out;
-  out.reserve(kinds.size());
-  for (const auto k : kinds) out.push_back(to_core(k));
-  return out;
-}
-
-core::TrackerConfig to_core(const config::TrackingSettings& t) {
-  core::TrackerConfig c;  // the core's defaults, overridden by what the file sets
-  if (t.loss_timeout_ms) c.loss_timeout_ms = *t.loss_timeout_ms;
-  if (t.reset_after_ms) c.reset_after_ms = *t.reset_after_ms;
-  if (t.position_noise_m) c.position_noise_m = *t.position_noise_m;
-  if (t.attitude_noise_rad) c.attitude_noise_rad = *t.attitude_noise_rad;
-  if (t.accel_noise_mps2) c.accel_noise_mps2 = *t.accel_noise_mps2;
-  if (t.angular_accel_noise_radps2) c.angular_accel_noise_radps2 = *t.angular_accel_noise_radps2;
-  if (t.gate_sigma) c.gate_sigma = *t.gate_sigma;
-  if (t.gate_min_m) c.gate_min_m = *t.gate_min_m;
-  if (t.jump_confirm_frames) c.jump_confirm_frames = *t.jump_confirm_frames;
-  return c;
-}
-
-/// Full MAVLink 2 frame size of a message kind (header 10 + payload + CRC 2).
-std::size_t frame_bytes(core::MessageKind kind) {
-  std::size_t payload = 0;
-  switch (kind) {
-    case core::MessageKind::odometry:
-      payload = mavlink::Odometry::kMaxLength;
-      break;
-    case core::MessageKind::vision_position_estimate:
-      payload = mavlink::VisionPositionEstimate::kMaxLength;
-      break;
-    case core::MessageKind::vision_speed_estimate:
-      payload = mavlink::VisionSpeedEstimate::kMaxLength;
-      break;
-    case core::MessageKind::att_pos_mocap:
-      payload = mavlink::AttPosMocap::kMaxLength;
-      break;
-    case core::MessageKind::hil_gps:
-      payload = mavlink::HilGps::kMaxLength;
-      break;
-    case core::MessageKind::gps_input:
-      payload = mavlink::GpsInput::kMaxLength;
-      break;
-    case core::MessageKind::local_position_ned:
-      payload = mavlink::LocalPositionNed::kMaxLength;
-      break;
-  }
-  return mavlink::kHeaderSizeV2 + payload + mavlink::kChecksumSize;
 }
 
 }  // namespace
@@ -157,8 +67,7 @@ std::optional<config::Config> load_run_config(const RunOptions& options,
 std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
                                                      std::string& error) {
   core::BridgeConfig out;
-  const auto world = core::WorldAxisMapping::parse(config::to_string(cfg.mocap.up),
-                                                   config::to_string(cfg.mocap.north));
+  const auto world = core::WorldAxisMapping::make(cfg.mocap.up, cfg.mocap.north);
   if (!world) {
     error = "[mocap] " + world.error().field + ": " + world.error().message;
     return std::nullopt;
@@ -168,7 +77,7 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
     out.origin = core::GeodeticPosition{cfg.origin->latitude_deg, cfg.origin->longitude_deg,
                                         cfg.origin->altitude_m};
   }
-  out.tracking = to_core(cfg.tracking);
+  out.tracking = cfg.tracking;
   for (std::size_t i = 0; i < cfg.vehicles.size(); ++i) {
     auto spec = make_vehicle_spec(cfg.vehicles[i], i, error);
     if (!spec) return std::nullopt;
@@ -179,8 +88,7 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
 
 std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std::size_t slot,
                                                    std::string& error) {
-  const auto axes =
-      core::BodyAxisMapping::parse(config::to_string(v.body_forward), config::to_string(v.body_up));
+  const auto axes = core::BodyAxisMapping::make(v.body_forward, v.body_up);
   if (!axes) {
     error = "vehicle " + v.name + ": " + axes.error().field + ": " + axes.error().message;
     return std::nullopt;
@@ -190,8 +98,8 @@ std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std
   spec.body = v.body;
   spec.system_id = v.system_id;
   spec.component_id = v.component_id;
-  spec.profile = to_core(v.profile);
-  spec.messages = to_core(v.messages);
+  spec.profile = v.profile;
+  spec.messages = v.messages;
   spec.rate_hz = v.rate_hz;
   spec.signing_key = v.signing_key;
   // One physical channel per vehicle (mavlink-wire.md §7.3): link ids 1, 2, ... by slot
@@ -200,22 +108,6 @@ std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std
   spec.body_axes = *axes;
   spec.enabled = v.enabled;
   return spec;
-}
-
-double profile_bytes_per_second(const config::Vehicle& vehicle) {
-  const std::size_t signature = vehicle.signing_key ? mavlink::kSignatureSize : 0;
-  const auto set = core::messages_for(to_core(vehicle.profile), to_core(vehicle.messages));
-  double per_send = 0.0;
-  for (std::size_t k = 0; k < core::kMessageKindCount; ++k) {
-    const auto kind = static_cast<core::MessageKind>(k);
-    if (set.contains(kind)) per_send += static_cast<double>(frame_bytes(kind) + signature);
-  }
-  // 1 Hz each: HEARTBEAT, a TIMESYNC request and reply, SET_GPS_GLOBAL_ORIGIN.
-  const double clock_driven =
-      static_cast<double>(mavlink::kHeaderSizeV2 + mavlink::kChecksumSize + signature) * 4.0 +
-      static_cast<double>(mavlink::Heartbeat::kMaxLength + 2 * mavlink::Timesync::kMaxLength +
-                          mavlink::SetGpsGlobalOrigin::kMaxLength);
-  return per_send * vehicle.rate_hz + clock_driven;
 }
 
 }  // namespace mocaplink::app

@@ -42,9 +42,4 @@ struct RunOptions {
                                                                  std::size_t slot,
                                                                  std::string& error);
 
-/// Bytes per second the vehicle's profile puts on its link at its rate (pose messages at rate_hz
-/// plus HEARTBEAT, TIMESYNC and origin at 1 Hz), with every frame at its full MAVLink 2 size (and
-/// signature): an upper bound, compared with a serial link's baud/10.
-[[nodiscard]] double profile_bytes_per_second(const config::Vehicle& vehicle);
-
 }  // namespace mocaplink::app

@@ -20,8 +20,9 @@ struct VehicleLink {
 };
 
 /// Builds (does not start) the vehicle's link (io::make_link). With a signing key, incoming frames
-/// are verified and unsigned ones rejected. For serial links, logs a warning when the profile's
-/// traffic (profile_bytes_per_second) exceeds what the baud rate carries (baud / 10 bytes/s).
+/// are verified and unsigned ones rejected. (A serial link too slow for the profile is a
+/// configuration warning: core::serial_bandwidth_warning, given by the config for `check`, `run`
+/// and the dashboard.)
 [[nodiscard]] VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& vehicle);
 
 }  // namespace mocaplink::app

@@ -39,9 +39,8 @@ Summary::Summary(const config::Config& config, std::chrono::milliseconds period)
 
 void Summary::describe_vehicle(const config::Vehicle& v, const io::Link& link) const {
   spdlog::info("vehicle {}: body {} -> {} as system {} component {}, profile {}, {:g} Hz{}{}",
-               v.name, v.body, link.url(), v.system_id, v.component_id,
-               config::to_string(v.profile), v.rate_hz, v.signing_key ? ", signed" : "",
-               v.enabled ? "" : ", disabled");
+               v.name, v.body, link.url(), v.system_id, v.component_id, core::to_string(v.profile),
+               v.rate_hz, v.signing_key ? ", signed" : "", v.enabled ? "" : ", disabled");
 }
 
 void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {

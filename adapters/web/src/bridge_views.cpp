@@ -100,14 +100,6 @@ constexpr std::array<Named, 9> kRover{{{0, "MANUAL"},
                                        {12, "SMART_RTL"},
                                        {15, "GUIDED"}}};
 
-std::string upper(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](char c) {
-    return static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  });
-  return out;
-}
-
 double seconds_between(core::HostTime from, core::HostTime to) {
   return core::to_seconds(to - from);
 }
@@ -115,18 +107,6 @@ double seconds_between(core::HostTime from, core::HostTime to) {
 LinkState link_state(core::LinkState state, bool down) {
   if (down) return LinkState::down;
   return state == core::LinkState::alive ? LinkState::up : LinkState::silent;
-}
-
-AgreementVerdict verdict(core::AgreementVerdict v) {
-  switch (v) {
-    case core::AgreementVerdict::unknown:
-      return AgreementVerdict::unknown;
-    case core::AgreementVerdict::agrees:
-      return AgreementVerdict::agree;
-    case core::AgreementVerdict::disagrees:
-      return AgreementVerdict::disagree;
-  }
-  return AgreementVerdict::unknown;
 }
 
 }  // namespace
@@ -184,12 +164,13 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     v.system_id = sender.system_id;
     v.profile = std::string(core::to_string(in.profile));
     std::uint64_t poses = 0;
-    for (std::size_t k = 0; k < core::kMessageKindCount; ++k) {
-      const auto kind = static_cast<core::MessageKind>(k);
-      const std::string name(core::to_string(kind));
+    for (const core::MessageDescriptor& row : core::kMessages) {
+      const std::string name(row.name);
+      const auto k = static_cast<std::size_t>(row.kind);
       v.available_messages.push_back(name);
-      if (sender.messages.contains(kind)) v.messages.push_back(name);
-      if (sender.counters.sent[k] > 0) v.sent[upper(name)] = sender.counters.sent[k];
+      if (sender.messages.contains(row.kind)) v.messages.push_back(name);
+      if (sender.counters.sent[k] > 0)
+        v.sent[std::string(row.mavlink_name)] = sender.counters.sent[k];
       poses += sender.counters.sent[k];
     }
     if (sender.counters.heartbeats > 0) v.sent["HEARTBEAT"] = sender.counters.heartbeats;
@@ -236,7 +217,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
       v.timesync.state = TimesyncState::waiting;
     }
     v.origin = state.origin;
-    v.agreement = AgreementView{verdict(state.agreement.verdict), state.agreement.yaw_offset_deg,
+    v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
                                 state.agreement.position_offset_m};
     status.vehicles.push_back(std::move(v));
   }

@@ -40,18 +40,6 @@ std::string_view to_string(TimesyncState state) {
   return "off";
 }
 
-std::string_view to_string(AgreementVerdict verdict) {
-  switch (verdict) {
-    case AgreementVerdict::unknown:
-      return "unknown";
-    case AgreementVerdict::agree:
-      return "agree";
-    case AgreementVerdict::disagree:
-      return "disagree";
-  }
-  return "unknown";
-}
-
 std::string_view to_string(AlertLevel level) {
   return level == AlertLevel::error ? "error" : "warning";
 }

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/profile.hpp"
 #include "mocaplink/text/did_you_mean.hpp"
 #include "mocaplink/text/hex.hpp"
 
@@ -69,8 +71,9 @@ ApiResult<double> get_rate(const json& object) {
   const json& value = object.at("rate_hz");
   if (!value.is_number()) return invalid("rate_hz", "must be a number");
   const double rate = value.get<double>();
-  if (!std::isfinite(rate) || rate <= 0.0 || rate > kMaxRateHz) {
-    return invalid("rate_hz", "must be > 0 and <= 500, got " + value.dump());
+  if (!std::isfinite(rate) || rate <= 0.0 || rate > core::kMaxSenderRateHz) {
+    return invalid("rate_hz",
+                   "must be > 0 and <= " + core::max_rate_text() + ", got " + value.dump());
   }
   return rate;
 }
@@ -117,24 +120,19 @@ ApiResult<bool> get_paused(const json& object) {
 }  // namespace
 
 const std::vector<std::string>& profile_names() {
-  static const std::vector<std::string> names = {"px4",           "ardupilot", "px4-gps",
-                                                 "ardupilot-gps", "classic",   "custom"};
+  static const std::vector<std::string> names(core::profile_names().begin(),
+                                              core::profile_names().end());
   return names;
 }
 
 const std::vector<std::string>& message_names() {
-  static const std::vector<std::string> names = {
-      "odometry",  "vision_position_estimate", "vision_speed_estimate", "att_pos_mocap", "hil_gps",
-      "gps_input", "local_position_ned"};
+  static const std::vector<std::string> names(core::message_kind_names().begin(),
+                                              core::message_kind_names().end());
   return names;
 }
 
 bool is_valid_vehicle_name(std::string_view name) {
-  return !name.empty() && name.size() <= kMaxNameLength &&
-         std::all_of(name.begin(), name.end(), [](char c) {
-           return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                  c == '_' || c == '.' || c == '-';
-         });
+  return core::is_valid_vehicle_name(name);
 }
 
 ApiResult<VehicleSpec> parse_vehicle_spec(std::string_view json_text) {
@@ -149,14 +147,15 @@ ApiResult<VehicleSpec> parse_vehicle_spec(std::string_view json_text) {
     if (!object.contains(required)) return invalid(required, "is required");
   }
   VehicleSpec spec;
-  auto name = get_string(object, "name", kMaxNameLength);
+  auto name = get_string(object, "name", core::kMaxVehicleNameLength);
   if (!name.ok()) return name.error();
   if (!is_valid_vehicle_name(name.value())) {
-    return invalid("name", "must be 1..64 characters of A-Z a-z 0-9 _ . -");
+    return invalid("name", "must be 1.." + std::to_string(core::kMaxVehicleNameLength) +
+                               " characters of A-Z a-z 0-9 _ . -");
   }
   spec.name = name.value();
 
-  auto body = get_string(object, "body", kMaxBodyLength);
+  auto body = get_string(object, "body", core::kMaxBodyNameLength);
   if (!body.ok()) return body.error();
   if (body.value().empty()) return invalid("body", "must not be empty");
   spec.body = body.value();

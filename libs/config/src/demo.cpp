@@ -12,7 +12,7 @@ Config demo_config() {
   demo.body = "Body1";
   demo.link = parse_link_url("udp://127.0.0.1:14550").value();
   demo.system_id = 1;
-  demo.profile = Profile::px4;
+  demo.profile = core::Profile::px4;
   config.vehicles.push_back(demo);
   return config;
 }

@@ -72,12 +72,12 @@ struct VehicleDraft {
   Field<LinkUrl> link;
   Field<std::uint8_t> system_id;
   Field<std::uint8_t> component_id;
-  Field<Profile> profile;
-  Field<std::vector<MessageKind>> messages;
+  Field<core::Profile> profile;
+  Field<std::vector<core::MessageKind>> messages;
   Field<double> rate_hz;
   Field<std::optional<std::array<std::uint8_t, 32>>> signing_key;
-  Field<Axis> body_forward;
-  Field<Axis> body_up;
+  Field<core::SignedAxis> body_forward;
+  Field<core::SignedAxis> body_up;
   Field<bool> enabled;
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")
 };
@@ -89,16 +89,16 @@ struct ConfigDraft {
   /// SCHEME://… shape only.
   SourceValidator validate_source;
   Field<SourceUrl> source;
-  Field<Axis> up;
-  Field<North> north;
-  Field<Axis> body_forward;
-  Field<Axis> body_up;
+  Field<core::SignedAxis> up;
+  Field<core::North> north;
+  Field<core::SignedAxis> body_forward;
+  Field<core::SignedAxis> body_up;
   std::optional<Where> origin_header;
   Field<double> latitude_deg;
   Field<double> longitude_deg;
   Field<double> altitude_m;
   std::vector<VehicleDraft> vehicles;
-  TrackingSettings tracking;
+  core::TrackerConfig tracking;  ///< the core's defaults, overridden key by key
   /// Where each [tracking] key was set: {bare name, place, displayed key}.
   struct TrackingSite {
     std::string name;

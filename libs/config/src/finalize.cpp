@@ -36,7 +36,7 @@ bool require(const Field<T>& field, const std::vector<std::string>& mistyped, st
 /// One axis-valued key as used by a right-angle rule: its effective value and where it was
 /// written (or the table it defaults in).
 struct AxisUse {
-  Axis axis = Axis::pos_x;
+  core::SignedAxis axis = core::axis::pos_x;
   bool written = false;
   bool invalid = false;  ///< written with a bad value: already reported, skip the rule
   Where where;
@@ -45,8 +45,8 @@ struct AxisUse {
 };
 
 template <typename T>
-AxisUse axis_use(const Field<T>& field, Axis effective, std::string name, const Where& table,
-                 const std::string& default_key) {
+AxisUse axis_use(const Field<T>& field, core::SignedAxis effective, std::string name,
+                 const Where& table, const std::string& default_key) {
   return AxisUse{effective,
                  field.present,
                  field.present && !field.value,
@@ -58,11 +58,11 @@ AxisUse axis_use(const Field<T>& field, Axis effective, std::string name, const 
 /// Checks that two axes are at right angles; the error goes to the one that was written (the
 /// second if both were) and names both.
 void check_perpendicular(const AxisUse& a, const AxisUse& b, Diagnostics& diagnostics) {
-  if (a.invalid || b.invalid || are_perpendicular(a.axis, b.axis)) return;
+  if (a.invalid || b.invalid || core::are_perpendicular(a.axis, b.axis)) return;
   const AxisUse& blamed = (b.written || !a.written) ? b : a;
   diagnostics.error(blamed.where, blamed.key,
-                    b.name + " (" + to_string(b.axis) + ") must be at right angles to " + a.name +
-                        " (" + to_string(a.axis) + ")");
+                    b.name + " (" + core::to_string(b.axis) + ") must be at right angles to " +
+                        a.name + " (" + core::to_string(a.axis) + ")");
 }
 
 MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
@@ -70,11 +70,11 @@ MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
   const Where table = d.mocap_header.value_or(d.document);
   if (require(d.source, d.mistyped, "source", table, "mocap.source", diagnostics))
     mocap.source = *d.source.value;
-  mocap.up = value_or(d.up, Axis::pos_z);
-  mocap.north = value_or(d.north, North{Axis::pos_x});
-  mocap.body_forward = value_or(d.body_forward, Axis::pos_x);
-  mocap.body_up = value_or(d.body_up, Axis::pos_z);
-  if (const auto* north_axis = std::get_if<Axis>(&mocap.north)) {
+  mocap.up = value_or(d.up, core::axis::pos_z);
+  mocap.north = value_or(d.north, core::North{core::axis::pos_x});
+  mocap.body_forward = value_or(d.body_forward, core::axis::pos_x);
+  mocap.body_up = value_or(d.body_up, core::axis::pos_z);
+  if (const auto* north_axis = std::get_if<core::SignedAxis>(&mocap.north)) {
     check_perpendicular(axis_use(d.up, mocap.up, "up", table, "mocap.up"),
                         axis_use(d.north, *north_axis, "north", table, "mocap.north"), diagnostics);
   }
@@ -115,14 +115,13 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   ok = require(v.system_id, v.mistyped, "system_id", v.header, key("system_id"), diagnostics) && ok;
   ok = require(v.profile, v.mistyped, "profile", v.header, key("profile"), diagnostics) && ok;
   Vehicle out;
-  out.profile = value_or(v.profile, Profile::px4);
+  out.profile = value_or(v.profile, core::Profile::px4);
   if (v.profile.value) {
-    const bool custom = out.profile == Profile::custom;
+    const bool custom = out.profile == core::Profile::custom;
     if (!custom && v.messages.present) {
-      diagnostics.error(
-          v.messages.where, v.messages.key,
-          std::string("messages is only allowed with profile = \"custom\"; profile \"") +
-              to_string(out.profile) + "\" sends a fixed set");
+      diagnostics.error(v.messages.where, v.messages.key,
+                        "messages is only allowed with profile = \"custom\"; profile \"" +
+                            std::string(core::to_string(out.profile)) + "\" sends a fixed set");
       ok = false;
     } else if (custom && v.messages.present && v.messages.value && v.messages.value->empty()) {
       diagnostics.error(v.messages.where, v.messages.key,
@@ -135,12 +134,11 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
       ok = false;
     }
   }
-  out.messages = value_or(v.messages, std::vector<MessageKind>{});
+  out.messages = value_or(v.messages, std::vector<core::MessageKind>{});
   const bool gps = (v.profile.value && needs_origin(out.profile)) ||
-                   std::any_of(out.messages.begin(), out.messages.end(),
-                               [](MessageKind m) { return needs_origin(m); });
+                   core::MessageSet(out.messages).needs_origin();
   if (gps && !have_origin && !d.origin_header) {
-    const bool by_profile = out.profile != Profile::custom;
+    const bool by_profile = out.profile != core::Profile::custom;
     const auto& where = by_profile ? v.profile.where : v.messages.where;
     diagnostics.error(where, by_profile ? v.profile.key : v.messages.key,
                       "GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin] table "
@@ -168,9 +166,17 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
                         "255 is the usual ground-station system id; a vehicle using it can mask "
                         "the GCS (protocols/autopilots.md §11.13)");
   }
-  if (out.profile == Profile::ardupilot && out.rate_hz > 50.0) {
+  if (out.profile == core::Profile::ardupilot && out.rate_hz > 50.0) {
     diagnostics.warning(v.rate_hz.where, v.rate_hz.key,
                         "ArduPilot's external-navigation input is meant for at most 50 Hz");
+  }
+  if (out.link.kind == LinkKind::serial) {
+    // The one bandwidth rule (core::serial_bandwidth_warning): `check`, `run` and a dashboard
+    // POST all report it from here.
+    const auto warning =
+        core::serial_bandwidth_warning(out.profile, core::messages_for(out.profile, out.messages),
+                                       out.rate_hz, out.signing_key.has_value(), out.link.baud);
+    if (warning) diagnostics.warning(v.link.where, v.link.key, *warning);
   }
   return out;
 }
@@ -216,18 +222,7 @@ void cross_check_vehicles(const ConfigDraft& d, Diagnostics& diagnostics) {
 /// the tracker's defaults for the keys not set, so that `check` rejects what `run` would.
 void check_tracking(const ConfigDraft& d, Diagnostics& diagnostics) {
   if (d.tracking_sites.empty()) return;
-  const TrackingSettings& t = d.tracking;
-  core::TrackerConfig merged;
-  merged.loss_timeout_ms = t.loss_timeout_ms.value_or(merged.loss_timeout_ms);
-  merged.reset_after_ms = t.reset_after_ms.value_or(merged.reset_after_ms);
-  merged.position_noise_m = t.position_noise_m.value_or(merged.position_noise_m);
-  merged.attitude_noise_rad = t.attitude_noise_rad.value_or(merged.attitude_noise_rad);
-  merged.accel_noise_mps2 = t.accel_noise_mps2.value_or(merged.accel_noise_mps2);
-  merged.angular_accel_noise_radps2 =
-      t.angular_accel_noise_radps2.value_or(merged.angular_accel_noise_radps2);
-  merged.gate_sigma = t.gate_sigma.value_or(merged.gate_sigma);
-  merged.gate_min_m = t.gate_min_m.value_or(merged.gate_min_m);
-  merged.jump_confirm_frames = t.jump_confirm_frames.value_or(merged.jump_confirm_frames);
+  const core::TrackerConfig& merged = d.tracking;  // the defaults with the keys set
   const auto problem = core::validate(merged);
   if (!problem) return;
   const auto& sites = d.tracking_sites;

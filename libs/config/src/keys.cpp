@@ -7,6 +7,7 @@
 #include <string>
 
 #include "draft.hpp"
+#include "mocaplink/core/bridge.hpp"
 #include "text_util.hpp"
 
 namespace mocaplink::config::detail {
@@ -47,13 +48,12 @@ void note_tracking_site(ConfigDraft& d, const Value& value) {
       {dot == std::string::npos ? value.key : value.key.substr(dot + 1), value.where, value.key});
 }
 
-void set_optional(ConfigDraft& d, std::optional<double>& slot, const Value& value,
-                  ValueOrError<double> parsed, Diagnostics& diagnostics) {
+void set_optional(ConfigDraft& d, double& slot, const Value& value, ValueOrError<double> parsed,
+                  Diagnostics& diagnostics) {
   note_tracking_site(d, value);
   if (parsed) {
     slot = parsed.value();
   } else {
-    slot.reset();
     diagnostics.error(value.where, value.key, parsed.error());
   }
 }
@@ -110,7 +110,7 @@ constexpr std::array<KeySpec<ConfigDraft>, 3> kOriginKeys = {{
     {"altitude_m", ValueType::number, origin_altitude},
 }};
 
-// ---- [tracking] (sanity bounds only; the core owns the defaults) ----
+// ---- [tracking] (sanity bounds only; the core owns the defaults and the cross-key rules) ----
 
 void tracking_loss(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   set_optional(d, d.tracking.loss_timeout_ms, v, number_in(v.number(), 0.0, 60000.0, false), diag);
@@ -143,7 +143,6 @@ void tracking_jump_frames(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   if (v.integer() >= 1 && v.integer() <= 1000) {
     d.tracking.jump_confirm_frames = static_cast<std::uint32_t>(v.integer());
   } else {
-    d.tracking.jump_confirm_frames.reset();
     diag.error(v.where, v.key,
                "must be an integer from 1 to 1000, got " + std::to_string(v.integer()));
   }
@@ -184,34 +183,28 @@ constexpr std::array<KeySpec<ConfigDraft>, 2> kHttpKeys = {{
 // ---- [[vehicle]] ----
 
 ValueOrError<std::string> parse_name(const std::string& text) {
-  const bool ok =
-      !text.empty() && text.size() <= 64 && std::all_of(text.begin(), text.end(), [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-               c == '_' || c == '-' || c == '.';
-      });
-  if (ok) return text;
+  if (core::is_valid_vehicle_name(text)) return text;
   return ValueOrError<std::string>::failure(
-      "must be 1 to 64 letters, digits, '_', '-' or '.', got " + quoted(text));
+      "must be 1 to " + std::to_string(core::kMaxVehicleNameLength) +
+      " letters, digits, '_', '-' or '.', got " + quoted(text));
 }
 
 ValueOrError<std::string> parse_body(const std::string& text) {
-  const bool controls = std::any_of(text.begin(), text.end(), [](char c) {
-    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-  });
-  if (!text.empty() && text.size() <= 256 && !controls) return text;
+  if (core::is_valid_body_name(text)) return text;
   return ValueOrError<std::string>::failure(
-      "must be the rigid-body name as the mocap system spells it (1 to 256 characters, no "
-      "control characters), got " +
+      "must be the rigid-body name as the mocap system spells it (1 to " +
+      std::to_string(core::kMaxBodyNameLength) + " characters, no control characters), got " +
       quoted(text));
 }
 
-ValueOrError<std::vector<MessageKind>> parse_messages(const std::vector<std::string>& names) {
-  std::vector<MessageKind> out;
+ValueOrError<std::vector<core::MessageKind>> parse_messages(const std::vector<std::string>& names) {
+  std::vector<core::MessageKind> out;
   for (const auto& name : names) {
     auto kind = parse_message_kind(name);
-    if (!kind) return ValueOrError<std::vector<MessageKind>>::failure(kind.error());
+    if (!kind) return ValueOrError<std::vector<core::MessageKind>>::failure(kind.error());
     if (std::find(out.begin(), out.end(), kind.value()) != out.end()) {
-      return ValueOrError<std::vector<MessageKind>>::failure(quoted(name) + " is listed twice");
+      return ValueOrError<std::vector<core::MessageKind>>::failure(quoted(name) +
+                                                                   " is listed twice");
     }
     out.push_back(kind.value());
   }
@@ -269,7 +262,7 @@ void vehicle_messages(VehicleDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.messages, v, parse_messages(v.list()), diag);
 }
 void vehicle_rate(VehicleDraft& d, const Value& v, Diagnostics& diag) {
-  assign(d.rate_hz, v, number_in(v.number(), 0.0, kMaxRateHz, false), diag);
+  assign(d.rate_hz, v, number_in(v.number(), 0.0, core::kMaxSenderRateHz, false), diag);
 }
 void vehicle_signing_key(VehicleDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.signing_key, v, parse_signing_key(v.text()), diag);

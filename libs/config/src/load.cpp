@@ -64,7 +64,7 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin) {
     vd.system_id = given(v.system_id, where, vd.prefix + "system_id");
     vd.component_id = given(v.component_id, where, vd.prefix + "component_id");
     vd.profile = given(v.profile, where, vd.prefix + "profile");
-    if (v.profile == Profile::custom)
+    if (v.profile == core::Profile::custom)
       vd.messages = given(v.messages, where, vd.prefix + "messages");
     vd.rate_hz = given(v.rate_hz, where, vd.prefix + "rate_hz");
     vd.signing_key = given(v.signing_key, where, vd.prefix + "signing_key");

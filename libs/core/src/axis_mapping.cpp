@@ -1,5 +1,6 @@
 #include "mocaplink/core/axis_mapping.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -59,6 +60,14 @@ std::string to_string(const SignedAxis& axis) {
   return out;
 }
 
+std::string to_string(const North& north) {
+  if (const auto* axis = std::get_if<SignedAxis>(&north)) return to_string(*axis);
+  std::array<char, 64> buffer{};
+  const double deg = std::get<NorthAngle>(north).deg;
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), deg);
+  return std::string(kAnglePrefix) + std::string(buffer.data(), result.ptr);
+}
+
 WorldAxisMapping::WorldAxisMapping(const Eigen::Matrix3d& r_ned_world)
     : r_ned_world_(r_ned_world), q_ned_world_(canonical_quaternion(r_ned_world)) {}
 
@@ -66,29 +75,36 @@ AxisMappingResult<WorldAxisMapping> WorldAxisMapping::parse(std::string_view up,
                                                             std::string_view north) {
   const auto up_axis = parse_signed_axis(up, "up");
   if (!up_axis) return up_axis.error();
-  const Eigen::Vector3d up_w = up_axis->unit();
-
-  Eigen::Vector3d north_w;
   if (north.starts_with(kAnglePrefix)) {
     const auto deg = parse_angle(north, "north");
     if (!deg) return deg.error();
+    return make(*up_axis, NorthAngle{*deg});
+  }
+  const auto north_axis = parse_signed_axis(north, "north");
+  if (!north_axis) {
+    return error("north", "expected one of +x -x +y -y +z -z or \"angle:DEG\", got \"" +
+                              std::string(north) + "\"");
+  }
+  return make(*up_axis, *north_axis);
+}
+
+AxisMappingResult<WorldAxisMapping> WorldAxisMapping::make(SignedAxis up, const North& north) {
+  const Eigen::Vector3d up_w = up.unit();
+  Eigen::Vector3d north_w;
+  if (const auto* angle = std::get_if<NorthAngle>(&north)) {
     // Reference axis: +x, or +y when up is +-x (docs/frames.md "Axis mapping").
     const Eigen::Vector3d reference =
-        up_axis->index == 0 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
-    const double rad = std::fmod(*deg, 360.0) * std::numbers::pi / 180.0;
+        up.index == 0 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
+    const double rad = std::fmod(angle->deg, 360.0) * std::numbers::pi / 180.0;
     // Right-hand rotation of the (horizontal) reference about up.
     north_w = Eigen::AngleAxisd(rad, up_w) * reference;
   } else {
-    const auto north_axis = parse_signed_axis(north, "north");
-    if (!north_axis) {
-      return error("north", "expected one of +x -x +y -y +z -z or \"angle:DEG\", got \"" +
-                                std::string(north) + "\"");
+    const SignedAxis north_axis = std::get<SignedAxis>(north);
+    if (!are_perpendicular(up, north_axis)) {
+      return error("north", "north \"" + to_string(north_axis) + "\" is parallel to up \"" +
+                                to_string(up) + "\"; it must be a horizontal axis");
     }
-    if (north_axis->index == up_axis->index) {
-      return error("north", "north \"" + std::string(north) + "\" is parallel to up \"" +
-                                std::string(up) + "\"; it must be a horizontal axis");
-    }
-    north_w = north_axis->unit();
+    north_w = north_axis.unit();
   }
   // NED: N x E = D, D = -up, so E = D x N.
   const Eigen::Vector3d down_w = -up_w;
@@ -109,13 +125,17 @@ AxisMappingResult<BodyAxisMapping> BodyAxisMapping::parse(std::string_view forwa
   if (!fwd_axis) return fwd_axis.error();
   const auto up_axis = parse_signed_axis(up, "body_up");
   if (!up_axis) return up_axis.error();
-  if (fwd_axis->index == up_axis->index) {
-    return error("body_up", "body_up \"" + std::string(up) + "\" is parallel to body_forward \"" +
-                                std::string(forward) + "\"");
+  return make(*fwd_axis, *up_axis);
+}
+
+AxisMappingResult<BodyAxisMapping> BodyAxisMapping::make(SignedAxis forward, SignedAxis up) {
+  if (!are_perpendicular(forward, up)) {
+    return error("body_up", "body_up \"" + to_string(up) + "\" is parallel to body_forward \"" +
+                                to_string(forward) + "\"");
   }
   // FRD: F x R = D, D = -up, so R = D x F.
-  const Eigen::Vector3d f_b = fwd_axis->unit();
-  const Eigen::Vector3d d_b = -up_axis->unit();
+  const Eigen::Vector3d f_b = forward.unit();
+  const Eigen::Vector3d d_b = -up.unit();
   const Eigen::Vector3d r_b = d_b.cross(f_b);
   Eigen::Matrix3d r_body_frd;
   r_body_frd.col(0) = f_b;

@@ -61,6 +61,20 @@ std::variant<Bridge, BridgeConfigError> Bridge::make(const BridgeConfig& config,
   return bridge;
 }
 
+bool is_valid_vehicle_name(std::string_view name) {
+  return !name.empty() && name.size() <= kMaxVehicleNameLength &&
+         std::all_of(name.begin(), name.end(), [](char c) {
+           return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                  c == '_' || c == '.' || c == '-';
+         });
+}
+
+bool is_valid_body_name(std::string_view body) {
+  return !body.empty() && body.size() <= kMaxBodyNameLength &&
+         std::none_of(body.begin(), body.end(),
+                      [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+}
+
 std::optional<BridgeConfigError> Bridge::validate_vehicle(const VehicleSpec& v,
                                                           std::size_t slot) const {
   if (v.name.empty()) return BridgeConfigError{vehicle_field(slot, "name"), "must not be empty"};
@@ -77,7 +91,8 @@ std::optional<BridgeConfigError> Bridge::validate_vehicle(const VehicleSpec& v,
                              "must be 2..255 (1 is the autopilot itself)"};
   }
   if (!(std::isfinite(v.rate_hz) && v.rate_hz > 0.0 && v.rate_hz <= kMaxSenderRateHz)) {
-    return BridgeConfigError{vehicle_field(slot, "rate_hz"), "must be in (0, 500]"};
+    return BridgeConfigError{vehicle_field(slot, "rate_hz"),
+                             "must be in (0, " + max_rate_text() + "]"};
   }
   if (v.profile == Profile::custom && v.messages.empty()) {
     return BridgeConfigError{vehicle_field(slot, "messages"), "profile custom needs messages"};
@@ -286,7 +301,10 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
   }
   if (reaction.agreement_changed) {
     const Agreement& a = v.state.agreement();
-    std::string text = "estimate " + std::string(to_string(a.verdict));
+    // A sentence for the log ("estimate agrees"), not the API spelling of the verdict.
+    std::string text = a.verdict == AgreementVerdict::agree      ? "estimate agrees"
+                       : a.verdict == AgreementVerdict::disagree ? "estimate disagrees"
+                                                                 : "estimate unknown";
     if (a.yaw_offset_deg) text += ", yaw offset " + std::to_string(*a.yaw_offset_deg) + " deg";
     if (a.position_offset_m) {
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";

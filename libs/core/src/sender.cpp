@@ -50,6 +50,12 @@ bool periodic_due(std::optional<HostTime>& next, HostTime now, Duration period) 
 
 }  // namespace
 
+std::string max_rate_text() {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", kMaxSenderRateHz);
+  return text;
+}
+
 Sender::Sender(const SenderConfig& config)
     : config_(config),
       period_(period_of(valid_rate(config.rate_hz) ? config.rate_hz : 1.0)),
@@ -97,11 +103,11 @@ void Sender::on_estimate(const BodyEstimate& estimate, const SendContext& contex
   }
   const bool pose_valid = estimate.pose_valid();
   bool any = false;
-  for (std::size_t i = 0; i < kMessageKindCount; ++i) {
-    const auto kind = static_cast<MessageKind>(i);
+  for (const MessageDescriptor& row : kMessages) {
+    const MessageKind kind = row.kind;
     if (!config_.messages.contains(kind)) continue;
-    if (!is_gps(kind) && !pose_valid) continue;  // never a stale pose (§12 "Common")
-    if (is_gps(kind) && context.origin == nullptr) continue;
+    if (!row.is_gps && !pose_valid) continue;  // never a stale pose (§12 "Common")
+    if (row.is_gps && context.origin == nullptr) continue;
     emit_kind(kind, estimate, context, out);
     any = true;
   }
@@ -114,34 +120,11 @@ void Sender::on_estimate(const BodyEstimate& estimate, const SendContext& contex
 
 void Sender::emit_kind(MessageKind kind, const BodyEstimate& estimate, const SendContext& context,
                        std::vector<OutgoingMessage>& out) {
-  const std::uint64_t time_usec = host_time_usec(context.capture);
-  GpsContext gps{context.origin, context.gps, context.gps_time};
-  mavlink::Message message;
-  switch (kind) {
-    case MessageKind::odometry:
-      message = build_odometry(estimate, time_usec);
-      break;
-    case MessageKind::vision_position_estimate:
-      message = build_vision_position_estimate(estimate, time_usec);
-      break;
-    case MessageKind::vision_speed_estimate:
-      message = build_vision_speed_estimate(estimate, time_usec);
-      break;
-    case MessageKind::att_pos_mocap:
-      message = build_att_pos_mocap(estimate, time_usec);
-      break;
-    case MessageKind::hil_gps:
-      message = build_hil_gps(estimate, time_usec, gps);
-      break;
-    case MessageKind::gps_input:
-      message = build_gps_input(estimate, time_usec, gps);
-      break;
-    case MessageKind::local_position_ned:
-      message = build_local_position_ned(estimate, ms_since(context.start, context.capture));
-      break;
-  }
+  const GpsContext gps{context.origin, context.gps, context.gps_time};
+  const MessageInputs inputs{host_time_usec(context.capture),
+                             ms_since(context.start, context.capture), &gps};
   ++counters_.sent[static_cast<std::size_t>(kind)];
-  emit(message, context.now, context.signing_now_10us, out);
+  emit(describe(kind).build(estimate, inputs), context.now, context.signing_now_10us, out);
 }
 
 void Sender::on_tick(HostTime now, std::uint64_t signing_now_10us, const GeodeticPosition* origin,

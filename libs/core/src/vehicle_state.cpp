@@ -54,10 +54,10 @@ std::string_view to_string(AgreementVerdict verdict) {
   switch (verdict) {
     case AgreementVerdict::unknown:
       return "unknown";
-    case AgreementVerdict::agrees:
-      return "agrees";
-    case AgreementVerdict::disagrees:
-      return "disagrees";
+    case AgreementVerdict::agree:
+      return "agree";
+    case AgreementVerdict::disagree:
+      return "disagree";
   }
   return "unknown";
 }
@@ -201,9 +201,9 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
   const bool pos_bad =
       vehicle_position_offset_m_ && *vehicle_position_offset_m_ > t.max_position_offset_m;
   if (yaw_bad || pos_bad) {
-    verdict = AgreementVerdict::disagrees;
+    verdict = AgreementVerdict::disagree;
   } else if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_) {
-    verdict = AgreementVerdict::agrees;
+    verdict = AgreementVerdict::agree;
   }
   agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
   agreement_.position_offset_m = vehicle_position_offset_m_;

@@ -140,7 +140,7 @@ TEST_F(ApiTest, VehiclesListAndOneVehicle) {
   auto one = get("/api/vehicles/rover");
   ASSERT_TRUE(one);
   EXPECT_EQ(one->status, 200);
-  EXPECT_EQ(body_json(one)["profile"], "classic");
+  EXPECT_EQ(body_json(one)["profile"], "custom");
   auto none = get("/api/vehicles/nobody");
   ASSERT_TRUE(none);
   EXPECT_EQ(none->status, 404);

@@ -38,7 +38,7 @@ core::BridgeSnapshot snapshot_at(double t_s, std::uint64_t odometry_sent) {
   v.vehicle.last_message = host_time_from_ns(0);
   v.vehicle.origin = core::OriginState::conflict;
   v.vehicle.timesync = core::TimesyncEstimate{2'500'000, 800'000, 3};
-  v.vehicle.agreement.verdict = core::AgreementVerdict::disagrees;
+  v.vehicle.agreement.verdict = core::AgreementVerdict::disagree;
   v.vehicle.agreement.yaw_offset_deg = 90.0;
   s.vehicles.push_back(v);
   return s;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "mocaplink/core/profile.hpp"
+
 namespace mocaplink::web::testing {
 namespace {
 
@@ -16,18 +18,19 @@ VehicleView make_vehicle(const VehicleSpec& spec) {
   v.profile = spec.profile;
   v.rate_hz = spec.rate_hz;
   v.paused = spec.paused;
-  if (spec.profile == "custom")
-    v.messages = spec.messages;
-  else if (spec.profile == "classic")
-    v.messages = {"hil_gps", "local_position_ned", "att_pos_mocap"};
-  else if (spec.profile == "px4-gps")
-    v.messages = {"hil_gps"};
-  else if (spec.profile == "ardupilot-gps")
-    v.messages = {"gps_input"};
-  else
-    v.messages = {"odometry"};
+  // What a profile sends and whether it sets the origin come from the core, as in the daemon
+  // (the fake has an [origin] configured).
+  const core::Profile profile = core::parse_profile(spec.profile).value_or(core::Profile::px4);
+  std::vector<core::MessageKind> custom;
+  for (const auto& name : spec.messages) {
+    if (const auto kind = core::parse_message_kind(name)) custom.push_back(*kind);
+  }
+  const core::MessageSet messages = core::messages_for(profile, custom);
+  for (const core::MessageKind kind : core::message_kinds()) {
+    if (messages.contains(kind)) v.messages.emplace_back(core::to_string(kind));
+  }
   v.available_messages = message_names();
-  v.origin = spec.profile == "custom" ? OriginState::not_needed : OriginState::sending;
+  v.origin = core::sends_origin(profile, messages) ? OriginState::sending : OriginState::not_needed;
   v.timesync.state = spec.profile == "px4" ? TimesyncState::waiting : TimesyncState::off;
   return v;
 }
@@ -48,7 +51,10 @@ std::array<double, 3> fake_body_position(std::size_t index, double t_s) {
 
 FakeBackend::FakeBackend() {
   VehicleSpec quad{"quad1", "Body1", "udp://127.0.0.1:14540", 1, "px4", {}, 50.0, "", false};
-  VehicleSpec rover{"rover", "Body2", "udp://127.0.0.1:14541", 2, "classic", {}, 20.0, "", false};
+  // rover: the classic message set as a custom profile, which sends the origin (classic does not).
+  VehicleSpec rover{"rover", "Body2",  "udp://127.0.0.1:14541",
+                    2,       "custom", {"hil_gps", "local_position_ned", "att_pos_mocap"},
+                    20.0,    "",       false};
   vehicles_.push_back(Vehicle{make_vehicle(quad), 0.0, 0.0});
   vehicles_.push_back(Vehicle{make_vehicle(rover), 0.0, 0.0});
   // quad1 talks back: heartbeat, timesync, origin confirmed, agreeing estimate.

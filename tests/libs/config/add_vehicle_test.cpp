@@ -31,8 +31,8 @@ std::vector<VehicleKey> quad2() {
 
 TEST(AddVehicle, AppendsAResolvedVehicle) {
   Config base = demo_config();
-  base.mocap.body_forward = Axis::pos_y;  // the [mocap] defaults apply to the new vehicle
-  base.mocap.body_up = Axis::pos_z;
+  base.mocap.body_forward = core::axis::pos_y;  // the [mocap] defaults apply to the new vehicle
+  base.mocap.body_up = core::axis::pos_z;
   const auto result = add_vehicle(base, quad2(), kOrigin);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   ASSERT_EQ(result.config->vehicles.size(), 2U);
@@ -43,9 +43,9 @@ TEST(AddVehicle, AppendsAResolvedVehicle) {
   EXPECT_EQ(to_string(v.link), "udp://127.0.0.1:14560");
   EXPECT_EQ(v.system_id, 2);
   EXPECT_EQ(v.component_id, kDefaultComponentId);
-  EXPECT_EQ(v.profile, Profile::ardupilot);
+  EXPECT_EQ(v.profile, core::Profile::ardupilot);
   EXPECT_EQ(v.rate_hz, 30.0);  // an integer where a number is expected
-  EXPECT_EQ(v.body_forward, Axis::pos_y);
+  EXPECT_EQ(v.body_forward, core::axis::pos_y);
   EXPECT_TRUE(v.enabled);
   EXPECT_TRUE(result.warnings.empty());
 }

@@ -18,13 +18,13 @@ TEST(DemoConfig, MatchesTheDesign) {
   const Config c = demo_config();
   EXPECT_EQ(c.mocap.source.scheme, "sim");
   EXPECT_EQ(c.mocap.source.text, "sim://");
-  EXPECT_EQ(c.mocap.up, Axis::pos_z);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_z);
   ASSERT_EQ(c.vehicles.size(), 1u);
   const Vehicle& v = c.vehicles[0];
   EXPECT_EQ(v.name, "demo");
   EXPECT_EQ(v.body, "Body1");
   EXPECT_EQ(to_string(v.link), "udp://127.0.0.1:14550");
-  EXPECT_EQ(v.profile, Profile::px4);
+  EXPECT_EQ(v.profile, core::Profile::px4);
   EXPECT_EQ(v.system_id, 1);
   EXPECT_EQ(v.component_id, 197);
   EXPECT_EQ(v.rate_hz, 50.0);
@@ -54,7 +54,7 @@ TEST(Overrides, DesignExampleAddsAVehicle) {
   EXPECT_EQ(v.body, "Quad1");
   EXPECT_EQ(v.link.kind, LinkKind::udp);
   EXPECT_EQ(v.link.address, (HostPort{"127.0.0.1", 14540}));
-  EXPECT_EQ(v.profile, Profile::px4);
+  EXPECT_EQ(v.profile, core::Profile::px4);
   EXPECT_EQ(v.system_id, 1);
   EXPECT_EQ(v.rate_hz, 50.0);
   EXPECT_EQ(v.component_id, 197);
@@ -75,12 +75,13 @@ TEST(Overrides, EveryKeyFromTheCommandLine) {
   EXPECT_EQ(v.link.baud, 115200u);
   EXPECT_EQ(v.system_id, 7);
   EXPECT_EQ(v.component_id, 191);
-  EXPECT_EQ(v.profile, Profile::custom);
-  EXPECT_THAT(v.messages, testing::ElementsAre(MessageKind::odometry, MessageKind::hil_gps));
+  EXPECT_EQ(v.profile, core::Profile::custom);
+  EXPECT_THAT(v.messages,
+              testing::ElementsAre(core::MessageKind::odometry, core::MessageKind::hil_gps));
   EXPECT_EQ(v.rate_hz, 12.5);
   ASSERT_TRUE(v.signing_key.has_value());
   EXPECT_EQ((*v.signing_key)[0], 0xAA);
-  EXPECT_EQ(v.body_forward, Axis::neg_y);
+  EXPECT_EQ(v.body_forward, core::axis::neg_y);
   EXPECT_FALSE(v.enabled);
 }
 
@@ -107,7 +108,7 @@ rate_hz = 50
   EXPECT_EQ(c.http.listen.port, 0);
   ASSERT_EQ(c.vehicles.size(), 1u);
   EXPECT_EQ(c.vehicles[0].rate_hz, 30.0);
-  EXPECT_EQ(c.vehicles[0].profile, Profile::ardupilot);
+  EXPECT_EQ(c.vehicles[0].profile, core::Profile::ardupilot);
   EXPECT_EQ(c.vehicles[0].body, "Quad1");  // kept from the file
   EXPECT_EQ(c.vehicles[0].system_id, 1);
 }

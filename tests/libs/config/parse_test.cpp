@@ -74,10 +74,10 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   // Kept as written: the caller's source validator judges the options (tests/adapters/registry).
   EXPECT_EQ(c.mocap.source.scheme, "qtm");
   EXPECT_EQ(c.mocap.source.text, "qtm://10.0.0.7:22224");
-  EXPECT_EQ(c.mocap.up, Axis::pos_y);
-  EXPECT_EQ(c.mocap.north, North{NorthAngle{-12.5}});
-  EXPECT_EQ(c.mocap.body_forward, Axis::pos_z);
-  EXPECT_EQ(c.mocap.body_up, Axis::pos_y);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_y);
+  EXPECT_EQ(c.mocap.north, core::North{core::NorthAngle{-12.5}});
+  EXPECT_EQ(c.mocap.body_forward, core::axis::pos_z);
+  EXPECT_EQ(c.mocap.body_up, core::axis::pos_y);
 
   ASSERT_TRUE(c.origin.has_value());
   EXPECT_EQ(c.origin->latitude_deg, 47.3977419);
@@ -92,26 +92,26 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(a.link.address, (HostPort{"sitl.local", 5760}));
   EXPECT_EQ(a.system_id, 42);
   EXPECT_EQ(a.component_id, 191);
-  EXPECT_EQ(a.profile, Profile::custom);
-  EXPECT_THAT(a.messages,
-              testing::ElementsAre(MessageKind::vision_position_estimate,
-                                   MessageKind::vision_speed_estimate, MessageKind::gps_input));
+  EXPECT_EQ(a.profile, core::Profile::custom);
+  EXPECT_THAT(a.messages, testing::ElementsAre(core::MessageKind::vision_position_estimate,
+                                               core::MessageKind::vision_speed_estimate,
+                                               core::MessageKind::gps_input));
   EXPECT_EQ(a.rate_hz, 30.5);
   ASSERT_TRUE(a.signing_key.has_value());
   for (std::size_t i = 0; i < 32; ++i) EXPECT_EQ((*a.signing_key)[i], i) << i;
-  EXPECT_EQ(a.body_forward, Axis::neg_x);  // the vehicle's own
-  EXPECT_EQ(a.body_up, Axis::pos_y);       // inherited from [mocap]
+  EXPECT_EQ(a.body_forward, core::axis::neg_x);  // the vehicle's own
+  EXPECT_EQ(a.body_up, core::axis::pos_y);       // inherited from [mocap]
   EXPECT_FALSE(a.enabled);
 
   const Vehicle& b = c.vehicles[1];
   EXPECT_EQ(b.name, "beta");
-  EXPECT_EQ(b.profile, Profile::classic);
+  EXPECT_EQ(b.profile, core::Profile::classic);
   EXPECT_EQ(b.component_id, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY
   EXPECT_EQ(b.rate_hz, 50.0);
   EXPECT_FALSE(b.signing_key.has_value());
   EXPECT_TRUE(b.messages.empty());
-  EXPECT_EQ(b.body_forward, Axis::pos_z);
-  EXPECT_EQ(b.body_up, Axis::pos_y);
+  EXPECT_EQ(b.body_forward, core::axis::pos_z);
+  EXPECT_EQ(b.body_up, core::axis::pos_y);
   EXPECT_TRUE(b.enabled);
 
   EXPECT_EQ(c.tracking.loss_timeout_ms, 250.0);
@@ -141,20 +141,22 @@ profile = "px4"
                                    "min.toml");
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   const Config& c = *result.config;
-  EXPECT_EQ(c.mocap.up, Axis::pos_z);
-  EXPECT_EQ(c.mocap.north, North{Axis::pos_x});
-  EXPECT_EQ(c.mocap.body_forward, Axis::pos_x);
-  EXPECT_EQ(c.mocap.body_up, Axis::pos_z);
+  EXPECT_EQ(c.mocap.up, core::axis::pos_z);
+  EXPECT_EQ(c.mocap.north, core::North{core::axis::pos_x});
+  EXPECT_EQ(c.mocap.body_forward, core::axis::pos_x);
+  EXPECT_EQ(c.mocap.body_up, core::axis::pos_z);
   EXPECT_FALSE(c.origin.has_value());
-  EXPECT_FALSE(c.tracking.loss_timeout_ms.has_value());
-  EXPECT_FALSE(c.tracking.reset_after_ms.has_value());
-  EXPECT_FALSE(c.tracking.position_noise_m.has_value());
-  EXPECT_FALSE(c.tracking.attitude_noise_rad.has_value());
-  EXPECT_FALSE(c.tracking.accel_noise_mps2.has_value());
-  EXPECT_FALSE(c.tracking.angular_accel_noise_radps2.has_value());
-  EXPECT_FALSE(c.tracking.gate_sigma.has_value());
-  EXPECT_FALSE(c.tracking.gate_min_m.has_value());
-  EXPECT_FALSE(c.tracking.jump_confirm_frames.has_value());
+  // No [tracking]: every value is the tracker's own default (docs/config.md "[tracking]").
+  const core::TrackerConfig defaults;
+  EXPECT_EQ(c.tracking.loss_timeout_ms, defaults.loss_timeout_ms);
+  EXPECT_EQ(c.tracking.reset_after_ms, defaults.reset_after_ms);
+  EXPECT_EQ(c.tracking.position_noise_m, defaults.position_noise_m);
+  EXPECT_EQ(c.tracking.attitude_noise_rad, defaults.attitude_noise_rad);
+  EXPECT_EQ(c.tracking.accel_noise_mps2, defaults.accel_noise_mps2);
+  EXPECT_EQ(c.tracking.angular_accel_noise_radps2, defaults.angular_accel_noise_radps2);
+  EXPECT_EQ(c.tracking.gate_sigma, defaults.gate_sigma);
+  EXPECT_EQ(c.tracking.gate_min_m, defaults.gate_min_m);
+  EXPECT_EQ(c.tracking.jump_confirm_frames, defaults.jump_confirm_frames);
   EXPECT_EQ(c.http.listen, (HostPort{"127.0.0.1", 8080}));
   EXPECT_EQ(c.http.token, "");
   ASSERT_EQ(c.vehicles.size(), 1u);
@@ -521,6 +523,27 @@ TEST(ParseConfig, WarningsDoNotFail) {
                 "w.toml:15:11: vehicle[2].rate_hz: ArduPilot's external-navigation input is meant "
                 "for at most 50 Hz",
             }));
+}
+
+TEST(ParseConfig, SerialLinkTooSlowForTheProfileIsAWarning) {
+  const auto vehicle = [](const char* baud) {
+    return kMocap +
+           "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\nlink = \"serial:///dev/ttyUSB0?baud=" + baud +
+           "\"\nsystem_id = 1\nprofile = \"px4\"\n";
+  };
+  const auto slow = parse_config(vehicle("57600"), "s.toml");
+  ASSERT_TRUE(slow.ok()) << testing::PrintToString(error_lines(slow));
+  // MAVLink 2 frames are 12 bytes + payload (common.xml lengths with extensions): ODOMETRY 233 at
+  // 50 Hz = 50 × 245; HEARTBEAT 9, TIMESYNC 18 (request and reply) and SET_GPS_GLOBAL_ORIGIN 21 at
+  // 1 Hz = 4 × 12 + 66. 57600 baud at 10 bits a byte carries 5760 bytes/s.
+  EXPECT_EQ(warning_lines(slow),
+            (std::vector<std::string>{
+                "s.toml:6:8: vehicle[1].link: profile px4 at 50 Hz needs up to 12364 bytes/s but "
+                "57600 baud carries 5760: frames will be dropped; lower rate_hz or raise the baud "
+                "rate"}));
+  const auto fast = parse_config(vehicle("921600"), "f.toml");
+  ASSERT_TRUE(fast.ok());
+  EXPECT_THAT(fast.warnings, testing::IsEmpty());
 }
 
 TEST(ParseConfig, NoVehiclesIsAWarning) {

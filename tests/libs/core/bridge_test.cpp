@@ -269,7 +269,7 @@ TEST(BridgeVehicles, LinkStateAndAgreementEvents) {
   ASSERT_EQ(out.events.size(), 1U);
   EXPECT_EQ(out.events[0].kind, BridgeEventKind::agreement);
   const auto agreement = bridge.snapshot(received_at(20)).vehicles[0].vehicle.agreement;
-  EXPECT_EQ(agreement.verdict, AgreementVerdict::disagrees);
+  EXPECT_EQ(agreement.verdict, AgreementVerdict::disagree);
   EXPECT_NEAR(*agreement.yaw_offset_deg, 90.0, 0.5);
   EXPECT_NEAR(*agreement.position_offset_m, 0.0, 1e-3);
   out = bridge.on_tick(received_at(20) + seconds(4));

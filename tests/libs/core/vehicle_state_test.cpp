@@ -193,7 +193,7 @@ TEST(VehicleAgreement, AgreesWithinThresholds) {
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);  // position not known yet
   const auto r = v.on_message(from(1, 1, local(1.1F, 2.0F, -0.5F)), HostTime{}, &mocap);
   EXPECT_TRUE(r.agreement_changed);
-  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agrees);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 5.0, 1e-4);
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.1, 1e-6);
 }
@@ -205,7 +205,7 @@ TEST(VehicleAgreement, DeliberateNinetyDegreeYawError) {
   v.on_message(from(1, 1, local(0.0F, 0.05F, -1.0F)), HostTime{}, &mocap);
   const auto r = v.on_message(from(1, 1, attitude(kPi / 2)), HostTime{seconds(1)}, &mocap);
   EXPECT_TRUE(r.agreement_changed);
-  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagrees);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 90.0, 1e-4);
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.05, 1e-6);
 }
@@ -227,13 +227,13 @@ TEST(VehicleAgreement, PositionOffsetDisagreesAndLostMocapIsIgnored) {
   auto mocap = mocap_at({0.0, 0.0, 0.0}, 0.0);
   v.on_message(from(1, 1, attitude(0.0)), HostTime{}, &mocap);
   v.on_message(from(1, 1, local(0.0F, 0.4F, 0.0F)), HostTime{}, &mocap);
-  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagrees);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.4, 1e-6);
   mocap.state = TrackingState::lost;
   v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), HostTime{}, &mocap);  // ignored
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.4, 1e-6);
   v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), HostTime{}, nullptr);  // ignored
-  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagrees);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
 }
 
 }  // namespace

@@ -37,6 +37,9 @@ namespace mocaplink::io {
 ///   down        cannot send now (TCP disconnected, serial device gone); frames are dropped and
 ///               counted while a retry is scheduled
 ///   closed      close() was called; final
+/// The socket / device state. A different idea from core::LinkState (whether the *vehicle* is
+/// heard: a UDP socket is up while nobody answers) and from web::LinkState (the dashboard's
+/// combination of both), so it stays its own type.
 enum class LinkState { connecting, up, down, closed };
 
 [[nodiscard]] constexpr const char* to_string(LinkState state) noexcept {

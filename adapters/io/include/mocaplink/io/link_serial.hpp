@@ -15,11 +15,6 @@
 
 namespace mocaplink::io {
 
-/// Bytes per second a serial line carries at `baud` with 8N1 framing (10 bits per byte).
-[[nodiscard]] constexpr double serial_bytes_per_second(std::uint32_t baud) noexcept {
-  return static_cast<double>(baud) / 10.0;
-}
-
 class SerialLink final : public StreamLink {
  public:
   /// `device`: absolute path (/dev/ttyUSB0, /dev/serial/by-id/...); `baud`: a termios rate.

@@ -52,7 +52,10 @@ struct StationView {
   std::vector<BodyView> bodies{};           ///< in order of first appearance
 };
 
-/// How the bridge hears from a vehicle over its link.
+/// How the bridge hears from a vehicle over its link, as the dashboard shows it (docs/api.md
+/// `link.state`). Not a copy of a core type: it combines two owners' states — the vehicle's
+/// heartbeat state (core::LinkState waiting / alive / silent: alive → up, otherwise silent) and
+/// the socket's (io::LinkState down or closed → down), which the core cannot know.
 enum class LinkState {
   up,      ///< a message arrived within the last few seconds (the daemon's silence timeout)
   silent,  ///< sending, but nothing heard back (yet, or for longer than the timeout)
@@ -72,13 +75,9 @@ enum class TimesyncState {
 /// conflict; core::to_string spells it for the JSON).
 using OriginState = core::OriginState;
 
-/// The agreement check: the vehicle's own ATTITUDE / LOCAL_POSITION_NED against the mocap estimate.
-enum class AgreementVerdict {
-  unknown,   ///< not enough data from the vehicle yet
-  agree,     ///< offsets within the thresholds
-  disagree,  ///< yaw or position offset beyond its threshold (wrong axis mapping, wrong body...)
-};
-[[nodiscard]] std::string_view to_string(AgreementVerdict verdict);
+/// The agreement check: the vehicle's own ATTITUDE / LOCAL_POSITION_NED against the mocap estimate
+/// (the core's verdict; core::to_string gives the API spelling).
+using AgreementVerdict = core::AgreementVerdict;
 
 /// The vehicle's HEARTBEAT as last received.
 struct HeartbeatView {

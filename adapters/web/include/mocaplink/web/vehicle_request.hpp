@@ -39,13 +39,13 @@ class [[nodiscard]] ApiResult {
   ApiError error_;
 };
 
-/// Range and spelling limits shared with the configuration file (DESIGN.md "Configuration").
-inline constexpr double kMaxRateHz = 500.0;
-inline constexpr std::size_t kMaxNameLength = 64;
-inline constexpr std::size_t kMaxBodyLength = 256;
+/// The longest link URL the API takes. The rate and name limits are the core's, shared with the
+/// configuration file (core::kMaxSenderRateHz, core::kMaxVehicleNameLength,
+/// core::kMaxBodyNameLength).
 inline constexpr std::size_t kMaxLinkLength = 512;
 
-/// The profiles and pose-message names of DESIGN.md, in display order.
+/// The profiles and pose-message names, in display order: the core's spellings
+/// (core::profile_names, core::message_kind_names), as strings.
 [[nodiscard]] const std::vector<std::string>& profile_names();
 [[nodiscard]] const std::vector<std::string>& message_names();
 

@@ -15,16 +15,19 @@
 #include "mocaplink/config/net_address.hpp"
 #include "mocaplink/config/profile.hpp"
 #include "mocaplink/config/source_url.hpp"
+#include "mocaplink/core/profile.hpp"
+#include "mocaplink/core/sender.hpp"
+#include "mocaplink/core/tracker.hpp"
 
 namespace mocaplink::config {
 
 /// [mocap]: where poses come from and how the mocap world frame maps to NED.
 struct MocapSettings {
-  SourceUrl source;                 ///< required
-  Axis up = Axis::pos_z;            ///< mocap axis pointing up (Vicon/QTM: +z; Motive default: +y)
-  North north = Axis::pos_x;        ///< mocap axis or angle that becomes north; ⟂ up
-  Axis body_forward = Axis::pos_x;  ///< default rigid-body axis pointing out of the nose
-  Axis body_up = Axis::pos_z;       ///< default rigid-body axis pointing up when level; ⟂ forward
+  SourceUrl source;                         ///< required
+  core::SignedAxis up = core::axis::pos_z;  ///< mocap axis pointing up (Vicon/QTM +z; Motive +y)
+  core::North north = core::axis::pos_x;    ///< mocap axis or angle that becomes north; ⟂ up
+  core::SignedAxis body_forward = core::axis::pos_x;  ///< default rigid-body axis out of the nose
+  core::SignedAxis body_up = core::axis::pos_z;  ///< default body axis up when level; ⟂ forward
 };
 
 /// [origin]: the geodetic position of the mocap frame's origin (WGS84; altitude above mean sea
@@ -39,7 +42,6 @@ struct Origin {
 /// (protocols/autopilots.md §9), never like the autopilot (component 1).
 inline constexpr std::uint8_t kDefaultComponentId = 197;
 inline constexpr double kDefaultRateHz = 50.0;
-inline constexpr double kMaxRateHz = 500.0;
 
 /// One [[vehicle]]: a mocap body whose poses go to one autopilot over one link.
 struct Vehicle {
@@ -48,27 +50,13 @@ struct Vehicle {
   LinkUrl link;
   std::uint8_t system_id = 1;  ///< 1..255, unique per link; also the source sysid we send with
   std::uint8_t component_id = kDefaultComponentId;  ///< 2..255 (1 is the autopilot itself)
-  Profile profile = Profile::px4;
-  std::vector<MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
-  double rate_hz = kDefaultRateHz;    ///< 0 < rate ≤ 500; pose messages per second
+  core::Profile profile = core::Profile::px4;
+  std::vector<core::MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
+  double rate_hz = kDefaultRateHz;  ///< 0 < rate ≤ core::kMaxSenderRateHz; pose messages per second
   std::optional<std::array<std::uint8_t, 32>> signing_key;  ///< MAVLink 2 signing secret
-  Axis body_forward = Axis::pos_x;  ///< resolved: the vehicle's override or [mocap]'s default
-  Axis body_up = Axis::pos_z;       ///< resolved likewise; ⟂ body_forward
-  bool enabled = true;              ///< false: configured but nothing is sent
-};
-
-/// [tracking]: optional tuning of the per-body tracker. Every value is std::nullopt unless the
-/// file sets it; the core owns the defaults. Ranges are sanity bounds checked here.
-struct TrackingSettings {
-  std::optional<double> loss_timeout_ms;             ///< 0 < v ≤ 60000
-  std::optional<double> reset_after_ms;              ///< 0 ≤ v ≤ 600000
-  std::optional<double> position_noise_m;            ///< 0 < v ≤ 10
-  std::optional<double> attitude_noise_rad;          ///< 0 < v ≤ π
-  std::optional<double> accel_noise_mps2;            ///< 0 < v ≤ 1000
-  std::optional<double> angular_accel_noise_radps2;  ///< 0 < v ≤ 10000
-  std::optional<double> gate_sigma;                  ///< 0 < v ≤ 100
-  std::optional<double> gate_min_m;                  ///< 0 ≤ v ≤ 100
-  std::optional<std::uint32_t> jump_confirm_frames;  ///< 1 ≤ v ≤ 1000
+  core::SignedAxis body_forward = core::axis::pos_x;        ///< the vehicle's override or [mocap]'s
+  core::SignedAxis body_up = core::axis::pos_z;             ///< resolved likewise; ⟂ body_forward
+  bool enabled = true;  ///< false: configured but nothing is sent
 };
 
 /// [http]: the dashboard / REST API.
@@ -82,7 +70,9 @@ struct Config {
   std::optional<Origin>
       origin;  ///< required by px4-gps, ardupilot-gps, classic, hil_gps, gps_input
   std::vector<Vehicle> vehicles;
-  TrackingSettings tracking;
+  /// [tracking]: the tracker settings — the core's defaults with the keys the file sets (sanity
+  /// bounds checked per key here, the tracker's cross-key rules by core::validate).
+  core::TrackerConfig tracking;
   HttpSettings http;
 };
 

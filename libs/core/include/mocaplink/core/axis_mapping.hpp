@@ -66,6 +66,33 @@ struct SignedAxis {
 
 /// "+x", "-y", ... for a SignedAxis.
 [[nodiscard]] std::string to_string(const SignedAxis& axis);
+/// True when two axes are at right angles (different coordinate, either sign): the one rule for
+/// up ⟂ north and body_forward ⟂ body_up (the config reports it with file:line).
+[[nodiscard]] constexpr bool are_perpendicular(SignedAxis a, SignedAxis b) {
+  return a.index != b.index;
+}
+
+/// The six signed axes by name (the config's defaults and tests).
+namespace axis {
+inline constexpr SignedAxis pos_x{0, 1};
+inline constexpr SignedAxis neg_x{0, -1};
+inline constexpr SignedAxis pos_y{1, 1};
+inline constexpr SignedAxis neg_y{1, -1};
+inline constexpr SignedAxis pos_z{2, 1};
+inline constexpr SignedAxis neg_z{2, -1};
+}  // namespace axis
+
+/// North given as an angle in the horizontal plane of the mocap frame: north is the reference
+/// axis rotated by `deg` degrees about up (right-handed: counter-clockwise seen from above). The
+/// reference axis is +x, or +y when up is ±x.
+struct NorthAngle {
+  double deg = 0.0;
+  friend bool operator==(const NorthAngle&, const NorthAngle&) = default;
+};
+/// The mocap direction that becomes NED north: a horizontal axis or an angle.
+using North = std::variant<SignedAxis, NorthAngle>;
+/// "+x" or "angle:37.5" (shortest round-trip decimal).
+[[nodiscard]] std::string to_string(const North& north);
 
 /// Mocap world frame -> NED. Rotation only (the NED origin is the mocap origin).
 class WorldAxisMapping {
@@ -78,6 +105,8 @@ class WorldAxisMapping {
   /// non-finite or malformed angle. Angles of any finite size are accepted (taken modulo 360).
   [[nodiscard]] static AxisMappingResult<WorldAxisMapping> parse(std::string_view up,
                                                                  std::string_view north);
+  /// From parsed values (the config's): the one place that checks north ⟂ up.
+  [[nodiscard]] static AxisMappingResult<WorldAxisMapping> make(SignedAxis up, const North& north);
 
   /// Rotation matrix taking mocap-world coordinates to NED coordinates: p_ned = R * p_world.
   /// Rows are the N, E, D unit vectors expressed in mocap-world coordinates.
@@ -106,6 +135,8 @@ class BodyAxisMapping {
   /// up.
   [[nodiscard]] static AxisMappingResult<BodyAxisMapping> parse(std::string_view forward,
                                                                 std::string_view up);
+  /// From parsed values (the config's): the one place that checks forward ⟂ up.
+  [[nodiscard]] static AxisMappingResult<BodyAxisMapping> make(SignedAxis forward, SignedAxis up);
 
   /// Rotation FRD -> mocap body: v_body = R * v_frd. Columns are the F, R, D unit vectors in mocap
   /// body coordinates.

@@ -59,6 +59,15 @@ namespace mocaplink::core {
 [[nodiscard]] WorldAxisMapping default_world_axes();
 [[nodiscard]] BodyAxisMapping default_body_axes();
 
+/// Longest vehicle name (1..64 of [A-Za-z0-9_.-]) and rigid-body name (1..256 bytes), in bytes:
+/// the config file and the dashboard API check these.
+inline constexpr std::size_t kMaxVehicleNameLength = 64;
+inline constexpr std::size_t kMaxBodyNameLength = 256;
+/// 1..kMaxVehicleNameLength of [A-Za-z0-9_.-] (vehicle names appear in file names and URLs).
+[[nodiscard]] bool is_valid_vehicle_name(std::string_view name);
+/// 1..kMaxBodyNameLength bytes without control characters (U+0000..U+001F, U+007F).
+[[nodiscard]] bool is_valid_body_name(std::string_view body);
+
 /// One vehicle (the core's view of a config [[vehicle]]; the app maps config → this).
 struct VehicleSpec {
   std::string name;  ///< unique, for events and the dashboard

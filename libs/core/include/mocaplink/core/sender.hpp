@@ -25,11 +25,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "mocaplink/core/body_estimate.hpp"
 #include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/message_builders.hpp"
+#include "mocaplink/core/message_table.hpp"
 #include "mocaplink/core/profile.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/mavlink/frame.hpp"
@@ -39,8 +41,11 @@
 
 namespace mocaplink::core {
 
-/// Largest accepted rate_hz (the config's bound).
+/// Largest accepted rate_hz: the one bound of every rate_hz check (config file, command line,
+/// dashboard API, Bridge, Sender); their messages print this number.
 inline constexpr double kMaxSenderRateHz = 500.0;
+/// kMaxSenderRateHz as the messages print it ("500").
+[[nodiscard]] std::string max_rate_text();
 /// HEARTBEAT, SET_GPS_GLOBAL_ORIGIN and TIMESYNC request period (autopilots.md §3.9–§3.11).
 inline constexpr Duration kHeartbeatPeriod = std::chrono::seconds(1);
 inline constexpr Duration kOriginPeriod = std::chrono::seconds(1);

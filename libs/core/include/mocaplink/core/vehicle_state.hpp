@@ -65,11 +65,13 @@ enum class OriginState : std::uint8_t {
 };
 [[nodiscard]] std::string_view to_string(OriginState state);
 
+/// The only verdict type: the dashboard API shows it as is (docs/api.md `agreement.verdict`).
 enum class AgreementVerdict : std::uint8_t {
-  unknown,    ///< not both a vehicle estimate and a tracked mocap estimate yet
-  agrees,     ///< within both thresholds
-  disagrees,  ///< yaw or position beyond its threshold
+  unknown,   ///< not both a vehicle estimate and a tracked mocap estimate yet
+  agree,     ///< within both thresholds
+  disagree,  ///< yaw or position beyond its threshold (wrong axis mapping, wrong body...)
 };
+/// "unknown", "agree", "disagree": the API's spellings (docs/api.md).
 [[nodiscard]] std::string_view to_string(AgreementVerdict verdict);
 
 /// Thresholds of the agreement check (documented defaults; docs/messages.md "Agreement").
