@@ -1,8 +1,9 @@
 // Fuzz target: configuration text → parse_config, and every line of the input as a --vehicle SPEC,
 // --source URL, --http ADDR and link URL, and as a `key=value` of a vehicle added or changed at run
-// time (add_vehicle, update_vehicle; values typed as JSON would give them) (libs/config). Beyond "no crash", it checks
-// the library's contract: a Config exists exactly when there are no errors, every error has a
-// message and a sane position, and every accepted Config satisfies the documented ranges and rules.
+// time (add_vehicle, update_vehicle; values typed as JSON would give them) (libs/config). Beyond
+// "no crash", it checks the library's contract: a Config exists exactly when there are no errors,
+// every error has a message and a sane position, and every accepted Config satisfies the
+// documented ranges and rules.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>

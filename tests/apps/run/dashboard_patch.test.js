@@ -22,15 +22,7 @@ async function main() {
   const run = h.mocaplink(['run', '--config', config]);
   const [, port] = await h.waitForLog(run, /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//);
   assert.ok(!run.stderr.includes(kArduWarning), `a warning at 30 Hz:\n${run.stderr}`);
-  const api = async (method, route, body) => {
-    const response = await fetch(`http://127.0.0.1:${port}${route}`, {
-      method,
-      headers: body === undefined ? {} : { 'Content-Type': 'application/json' },
-      body: body === undefined ? undefined : JSON.stringify(body),
-    });
-    const text = await response.text();
-    return { status: response.status, json: text ? JSON.parse(text) : undefined };
-  };
+  const api = h.dashboardApi(port);
 
   // Above 50 Hz: applied, with the file's warning in the log (the API answer is the vehicle).
   const fast = await api('PATCH', '/api/vehicles/ardu', { rate_hz: 60 });
