@@ -1,9 +1,10 @@
 // Fuzz target: configuration text → parse_config, and every line of the input as a --vehicle SPEC,
 // --source URL (through the source registry: every built-in source's option parser), --http ADDR
-// and link URL, and as a `key=value` of a vehicle added at run time (add_vehicle, values typed as
-// JSON would give them) (libs/config, adapters/sources). Beyond "no crash", it checks
-// the library's contract: a Config exists exactly when there are no errors, every error has a
-// message and a sane position, and every accepted Config satisfies the documented ranges and rules.
+// and link URL, and as a `key=value` of a vehicle added or changed at run time (add_vehicle,
+// update_vehicle; values typed as JSON would give them) (libs/config, adapters/sources). Beyond
+// "no crash", it checks the library's contract: a Config exists exactly when there are no errors,
+// every error has a message and a sane position, and every accepted Config satisfies the
+// documented ranges and rules.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -114,6 +115,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto added = mocaplink::config::add_vehicle(mocaplink::config::demo_config(), keys, "fuzz");
   check_result(added);
   if (added.config) require(added.config->vehicles.size() == 2);
+  const auto updated =
+      mocaplink::config::update_vehicle(mocaplink::config::demo_config(), "demo", keys, "fuzz");
+  check_result(updated);
+  if (updated.config) require(updated.config->vehicles.size() == 1);
   if (!overrides.vehicles.empty()) {
     overrides.source = overrides.vehicles.front();
     overrides.http = overrides.vehicles.back();

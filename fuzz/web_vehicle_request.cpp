@@ -1,55 +1,85 @@
 // Fuzz target for the dashboard's request bodies (adapters/web vehicle_request): POST and PATCH
-// JSON from the network. Properties beyond "no crash, no sanitizer report": every refusal is a
-// 4xx with a message; every accepted spec/patch satisfies the documented ranges and spellings.
+// JSON from the network, on through the configuration's checks they meet in the daemon
+// (config::add_vehicle / update_vehicle on the demo configuration). Properties beyond "no crash,
+// no sanitizer report": every refusal is a 4xx with a message; an accepted body carries only
+// [[vehicle]] keys the endpoint takes; a vehicle the configuration accepts satisfies the
+// documented ranges; a refusal by the configuration maps to a 422 naming a key of the request.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "mocaplink/config/demo.hpp"
+#include "mocaplink/config/load.hpp"
 #include "mocaplink/core/sender.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 
 namespace {
 
-using namespace mocaplink::web;
+using namespace mocaplink;
 
-void check_error(const ApiError& error) {
+void check_error(const web::ApiError& error) {
   if (error.status < 400 || error.status > 499 || error.error.empty()) std::abort();
 }
 
-bool known_messages(const std::vector<std::string>& messages) {
-  const auto& names = message_names();
-  return std::all_of(messages.begin(), messages.end(), [&](const std::string& m) {
-    return std::find(names.begin(), names.end(), m) != names.end();
-  });
+void check_keys(const std::vector<config::VehicleKey>& keys,
+                const std::vector<std::string_view>& allowed) {
+  for (const auto& k : keys) {
+    if (std::find(allowed.begin(), allowed.end(), k.key) == allowed.end()) std::abort();
+  }
+}
+
+void check_refusal(const config::ConfigResult& result,
+                   const std::vector<config::VehicleKey>& keys) {
+  if (result.ok()) return;
+  const web::ApiError error = web::refusal(result.errors.front());
+  check_error(error);
+  if (error.status != 422) std::abort();
+  const bool named = error.field.empty() ||
+                     std::any_of(keys.begin(), keys.end(),
+                                 [&](const config::VehicleKey& k) { return k.key == error.field; });
+  // A required key that is missing is named although the request lacks it.
+  if (!named && result.errors.front().message != "missing required key") std::abort();
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  const auto spec = parse_vehicle_spec(text);
-  if (!spec.ok()) {
-    check_error(spec.error());
+  const config::Config base = config::demo_config();
+  const auto add = web::parse_vehicle_spec(text);
+  if (!add.ok()) {
+    check_error(add.error());
   } else {
-    const VehicleSpec& s = spec.value();
-    if (!is_valid_vehicle_name(s.name) || s.body.empty() || s.system_id == 0 ||
-        !(s.rate_hz > 0.0 && s.rate_hz <= mocaplink::core::kMaxSenderRateHz) ||
-        !known_messages(s.messages) || (s.profile == "custom") == s.messages.empty()) {
-      std::abort();
+    check_keys(add.value().keys, {"name", "body", "link", "system_id", "profile", "messages",
+                                  "rate_hz", "signing_key"});
+    const auto added = config::add_vehicle(base, add.value().keys, "POST /api/vehicles");
+    check_refusal(added, add.value().keys);
+    if (added.ok()) {
+      const config::Vehicle& v = added.config->vehicles.back();
+      if (v.name != add.value().name || v.body.empty() || v.system_id == 0 ||
+          !(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::core::kMaxSenderRateHz) ||
+          (v.profile == mocaplink::core::Profile::custom) == v.messages.empty()) {
+        std::abort();
+      }
     }
   }
-  const auto patch = parse_vehicle_patch(text, "v");
-  if (!patch.ok()) {
-    check_error(patch.error());
+  const auto update = web::parse_vehicle_patch(text, "demo");
+  if (!update.ok()) {
+    check_error(update.error());
   } else {
-    const VehiclePatch& p = patch.value();
-    if (!p.rate_hz && !p.messages && !p.paused) std::abort();
-    if (p.rate_hz && !(*p.rate_hz > 0.0 && *p.rate_hz <= mocaplink::core::kMaxSenderRateHz))
-      std::abort();
-    if (p.messages && !known_messages(*p.messages)) std::abort();
+    const web::UpdateVehicle& u = update.value();
+    if (u.keys.empty() && !u.paused) std::abort();
+    check_keys(u.keys, {"rate_hz", "messages"});
+    const auto updated = config::update_vehicle(base, "demo", u.keys, "PATCH /api/vehicles/demo");
+    check_refusal(updated, u.keys);
+    if (updated.ok()) {
+      const double rate = updated.config->vehicles.front().rate_hz;
+      if (!(rate > 0.0 && rate <= mocaplink::core::kMaxSenderRateHz)) std::abort();
+    }
   }
   return 0;
 }

@@ -88,6 +88,7 @@ class Daemon {
   std::optional<web::ApiError> add_vehicle(const std::vector<config::VehicleKey>& keys,
                                            bool paused);
   std::optional<web::ApiError> remove_vehicle(const std::string& name);
+  std::optional<web::ApiError> update_vehicle(const web::UpdateVehicle& update);
   void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
@@ -113,7 +114,10 @@ class Daemon {
   asio::steady_timer signing_timer_;
   asio::steady_timer summary_timer_;
   asio::steady_timer stop_timer_;
-  config::Config config_;     // the configuration now: the file's, plus and minus dashboard changes
+  // The configuration now: the file's, plus and minus the dashboard's adds and removals, with its
+  // PATCHed rates (config::update_vehicle). Live-only choices (a PATCHed message set, pause) are
+  // the Bridge's alone.
+  config::Config config_;
   std::string source_error_;  // the source's last problem, "" when connected (dashboard)
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
@@ -173,7 +177,7 @@ void Daemon::start_link(std::size_t slot) {
           on_vehicle_frame(slot, frame, t);
         }
       },
-      [name = vehicles_[slot].vehicle.name](io::LinkState state, const std::string& detail) {
+      [name = bridge_.vehicle(slot)->name](io::LinkState state, const std::string& detail) {
         if (state == io::LinkState::down) {
           spdlog::warn("vehicle {}: link {}: {}", name, io::to_string(state), detail);
         } else {
@@ -194,10 +198,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   // The configuration's own checks first (unique system id per link, origin, ...), so a vehicle
   // added here is one the file could have held.
   auto checked = config::add_vehicle(config_, keys, "POST /api/vehicles");
-  if (!checked.ok()) {
-    const config::ConfigError& e = checked.errors.front();
-    return web::ApiError{422, e.key.empty() ? e.message : e.key + ": " + e.message, e.key};
-  }
+  if (!checked.ok()) return web::refusal(checked.errors.front());
   for (const auto& w : checked.warnings) spdlog::warn("dashboard: {}", config::to_string(w));
   const config::Vehicle vehicle = checked.config->vehicles.back();
   const std::size_t slot = bridge_.next_slot();
@@ -252,6 +253,47 @@ std::optional<web::ApiError> Daemon::remove_vehicle(const std::string& name) {
   while (!vehicles_.empty() && !vehicles_.back().link) vehicles_.pop_back();
   std::erase_if(config_.vehicles, [&](const config::Vehicle& c) { return c.name == name; });
   spdlog::info("dashboard: vehicle {} removed", name);
+  return std::nullopt;
+}
+
+std::optional<web::ApiError> Daemon::update_vehicle(const web::UpdateVehicle& update) {
+  if (stopping_) return web::ApiError{503, "the daemon is stopping", ""};
+  const auto slot = bridge_.find_vehicle(update.name);
+  if (!slot) return web::ApiError{404, "no vehicle named \"" + update.name + "\"", ""};
+  // Check everything first, then apply: nothing half-applied. The configuration's checks are a
+  // file's (ranges, spellings, the origin GPS messages need), with its warnings.
+  std::optional<double> rate;
+  std::optional<core::MessageSet> messages;
+  if (!update.keys.empty()) {
+    auto checked = config::update_vehicle(config_, update.name, update.keys,
+                                          "PATCH /api/vehicles/" + update.name);
+    if (!checked.ok()) return web::refusal(checked.errors.front());
+    for (const auto& w : checked.warnings) spdlog::warn("dashboard: {}", config::to_string(w));
+    for (const auto& key : update.keys) {
+      if (key.key == "rate_hz") {
+        for (const auto& v : checked.config->vehicles) {
+          if (v.name == update.name) rate = v.rate_hz;
+        }
+      } else if (key.key == "messages") {
+        messages.emplace();  // spelled right: update_vehicle checked every name
+        for (const auto& name : std::get<std::vector<std::string>>(key.value)) {
+          if (const auto kind = core::parse_message_kind(name)) messages->insert(*kind);
+        }
+      }
+    }
+    config_ = std::move(*checked.config);
+  }
+  if (rate && !bridge_.set_rate_hz(*slot, *rate)) {
+    return web::ApiError{500, "internal error: the sender refused rate_hz", "rate_hz"};
+  }
+  if (messages && !bridge_.set_messages(*slot, *messages)) {
+    return web::ApiError{500, "internal error: the sender refused messages", "messages"};
+  }
+  if (update.paused) (void)bridge_.set_paused(*slot, *update.paused);
+  spdlog::info("dashboard: vehicle {}:{}{}{}", update.name,
+               rate ? fmt::format(" rate_hz={}", *rate) : "",
+               messages ? fmt::format(" messages=[{}]", core::to_string(*messages)) : "",
+               update.paused ? fmt::format(" paused={}", *update.paused) : "");
   return std::nullopt;
 }
 
@@ -341,10 +383,11 @@ void Daemon::on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& fra
 }
 
 void Daemon::save_signing() {
-  for (const auto& v : vehicles_) {
+  for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {
+    const VehicleLink& v = vehicles_[slot];
     if (!v.link || !v.signing || v.last_signing_10us == 0) continue;
     std::string problem;
-    if (!store_.save(v.vehicle.name, v.last_signing_10us, &problem)) {
+    if (!store_.save(bridge_.vehicle(slot)->name, v.last_signing_10us, &problem)) {
       spdlog::warn("signing: cannot persist the timestamp: {}", problem);
     }
   }
@@ -391,11 +434,13 @@ int Daemon::run() {
   });
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
-      loop_, DashboardAccess{bridge_, config_, vehicles_, source_error_,
-                             [this](const std::vector<config::VehicleKey>& keys, bool paused) {
-                               return add_vehicle(keys, paused);
-                             },
-                             [this](const std::string& name) { return remove_vehicle(name); }});
+      loop_,
+      DashboardAccess{bridge_, config_, vehicles_, source_error_,
+                      [this](const std::vector<config::VehicleKey>& keys, bool paused) {
+                        return add_vehicle(keys, paused);
+                      },
+                      [this](const std::string& name) { return remove_vehicle(name); },
+                      [this](const web::UpdateVehicle& update) { return update_vehicle(update); }});
   if (const auto* error = std::get_if<std::string>(&dashboard)) {
     spdlog::error("{}", *error);
     return kExitRuntime;
@@ -403,7 +448,9 @@ int Daemon::run() {
   dashboard_ = std::move(std::get<std::unique_ptr<RunDashboard>>(dashboard));
   restore_signing();
   open_links();
-  for (const auto& v : vehicles_) summary_.describe_vehicle(v.vehicle, *v.link);
+  for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {  // slot i: config vehicle i
+    summary_.describe_vehicle(config_.vehicles[slot], *vehicles_[slot].link);
+  }
   summary_.begin(io::host_now());
   start_source();
   every(tick_timer_, kTickPeriod, [this] {

@@ -21,16 +21,6 @@ namespace {
 /// How long an HTTP thread waits for the loop before answering 503 / the last status.
 constexpr auto kLoopTimeout = std::chrono::seconds(1);
 
-std::optional<core::MessageSet> message_set(const std::vector<std::string>& names) {
-  core::MessageSet set;
-  for (const std::string& name : names) {
-    const auto kind = core::parse_message_kind(name);
-    if (!kind) return std::nullopt;
-    set.insert(*kind);
-  }
-  return set;
-}
-
 }  // namespace
 
 class RunDashboard::Backend final : public web::DashboardBackend {
@@ -96,56 +86,13 @@ class RunDashboard::Backend final : public web::DashboardBackend {
 
   std::optional<web::ApiError> apply_on_loop(const web::VehicleChange& change) {
     if (const auto* update = std::get_if<web::UpdateVehicle>(&change)) {
-      return update_vehicle(update->patch);
+      return access_.update_vehicle(*update);
     }
     if (const auto* remove = std::get_if<web::RemoveVehicle>(&change)) {
       return access_.remove_vehicle(remove->name);
     }
-    const web::VehicleSpec& spec = std::get<web::AddVehicle>(change).spec;
-    return access_.add_vehicle(vehicle_keys(spec), spec.paused);
-  }
-
-  /// The API's vehicle as the keys of a [[vehicle]] table (docs/api.md: the same keys).
-  static std::vector<config::VehicleKey> vehicle_keys(const web::VehicleSpec& spec) {
-    std::vector<config::VehicleKey> keys{
-        {"name", spec.name},       {"body", spec.body},
-        {"link", spec.link},       {"system_id", std::int64_t{spec.system_id}},
-        {"profile", spec.profile}, {"rate_hz", spec.rate_hz},
-    };
-    if (!spec.messages.empty()) keys.push_back({"messages", spec.messages});
-    if (!spec.signing_key.empty()) keys.push_back({"signing_key", spec.signing_key});
-    return keys;
-  }
-
-  std::optional<web::ApiError> update_vehicle(const web::VehiclePatch& patch) {
-    const auto found = access_.bridge.find_vehicle(patch.name);
-    if (!found) return web::ApiError{404, "no vehicle named \"" + patch.name + "\"", ""};
-    const std::size_t index = *found;
-    // Check everything first, then apply: nothing half-applied.
-    std::optional<core::MessageSet> messages;
-    if (patch.messages) {
-      messages = message_set(*patch.messages);
-      if (!messages) return web::ApiError{422, "messages: unknown message", "messages"};
-      if (messages->needs_origin() && !access_.bridge.config().origin) {
-        return web::ApiError{422,
-                             "messages: hil_gps and gps_input need an [origin] in the "
-                             "configuration",
-                             "messages"};
-      }
-    }
-    if (patch.rate_hz && !(*patch.rate_hz > 0.0 && *patch.rate_hz <= core::kMaxSenderRateHz)) {
-      return web::ApiError{422, "rate_hz: out of range", "rate_hz"};
-    }
-    if (patch.rate_hz && !access_.bridge.set_rate_hz(index, *patch.rate_hz)) {
-      return web::ApiError{422, "rate_hz: refused by the sender", "rate_hz"};
-    }
-    if (messages) (void)access_.bridge.set_messages(index, *messages);
-    if (patch.paused) (void)access_.bridge.set_paused(index, *patch.paused);
-    spdlog::info("dashboard: vehicle {}:{}{}{}", patch.name,
-                 patch.rate_hz ? fmt::format(" rate_hz={}", *patch.rate_hz) : "",
-                 messages ? fmt::format(" messages=[{}]", core::to_string(*messages)) : "",
-                 patch.paused ? fmt::format(" paused={}", *patch.paused) : "");
-    return std::nullopt;
+    const web::AddVehicle& add = std::get<web::AddVehicle>(change);
+    return access_.add_vehicle(add.keys, add.paused);
   }
 
   asio::io_context& loop_;

@@ -34,6 +34,8 @@ struct DashboardAccess {
       add_vehicle;
   /// Stops and removes the vehicle named so.
   std::function<std::optional<web::ApiError>(const std::string& name)> remove_vehicle;
+  /// Changes a running vehicle (rate_hz, messages through config::update_vehicle; paused).
+  std::function<std::optional<web::ApiError>(const web::UpdateVehicle& update)> update_vehicle;
 };
 
 class RunDashboard {

@@ -9,7 +9,6 @@ VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& veh
   options.name = vehicle.name;
   if (vehicle.signing_key) options.verify_key = mavlink::SigningKey(*vehicle.signing_key);
   VehicleLink out;
-  out.vehicle = vehicle;
   out.signing = vehicle.signing_key.has_value();
   out.link = io::make_link(loop, vehicle.link, std::move(options));
   return out;

@@ -1,5 +1,7 @@
 // One io::Link per configured vehicle (DESIGN.md "Link URLs"), plus what the daemon tracks per
 // link: whether it signs, and the last signing timestamp it sent (persisted, io/signing_store.hpp).
+// What the vehicle is (name, body, profile, ...) is not repeated here: the Bridge holds it by the
+// same slot, and the daemon's Config holds the configuration (docs/architecture-vehicles.md).
 #pragma once
 
 #include <cstdint>
@@ -13,7 +15,6 @@
 namespace mocaplink::app {
 
 struct VehicleLink {
-  config::Vehicle vehicle;              ///< as configured, or as added from the dashboard
   std::unique_ptr<io::Link> link;       ///< nullptr: an empty vehicle slot (vehicle removed)
   bool signing = false;                 ///< the vehicle has a signing key
   std::uint64_t last_signing_10us = 0;  ///< timestamp of the latest signed frame sent (0: none)

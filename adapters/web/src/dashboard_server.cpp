@@ -252,6 +252,8 @@ void DashboardServer::Impl::apply_and_respond(httplib::Response& res, const Vehi
     res.status = 204;
     return;
   }
+  // Only now: the backend has accepted the name (no control characters, A-Z a-z 0-9 _ . -).
+  if (success_status == 201) res.set_header("Location", std::string(kVehiclePath) + name);
   respond_vehicle(res, success_status, name, true);
 }
 
@@ -298,34 +300,25 @@ void DashboardServer::Impl::install_routes() {
     send_json(res, 200, snapshot()->status.at("vehicles"));
   });
   server_.Post("/api/vehicles", [this](const Request& req, Response& res) {
-    auto spec = parse_vehicle_spec(req.body);
-    if (!spec.ok()) return send_error(res, spec.error());
-    res.set_header("Location", std::string(kVehiclePath) + spec.value().name);
-    apply_and_respond(res, AddVehicle{spec.value()}, spec.value().name, 201);
+    auto add = parse_vehicle_spec(req.body);
+    if (!add.ok()) return send_error(res, add.error());
+    apply_and_respond(res, add.value(), add.value().name, 201);
   });
 
   const std::string vehicle_pattern = std::string(kVehiclePath) + "([^/]+)";
-  auto vehicle_name = [](const Request& req, Response& res) -> std::optional<std::string> {
-    std::string name = req.matches[1];
-    if (!is_valid_vehicle_name(name)) {
-      send_error(res, ApiError{404, "no vehicle named \"" + name + "\"", ""});
-      return std::nullopt;
-    }
-    return name;
-  };
-  server_.Get(vehicle_pattern, [this, vehicle_name](const Request& req, Response& res) {
-    if (auto name = vehicle_name(req, res)) respond_vehicle(res, 200, *name);
+  // A name no vehicle has (whatever its spelling) is answered 404 by the snapshot or the backend.
+  server_.Get(vehicle_pattern, [this](const Request& req, Response& res) {
+    respond_vehicle(res, 200, req.matches[1]);
   });
-  server_.Patch(vehicle_pattern, [this, vehicle_name](const Request& req, Response& res) {
-    auto name = vehicle_name(req, res);
-    if (!name) return;
-    auto patch = parse_vehicle_patch(req.body, *name);
+  server_.Patch(vehicle_pattern, [this](const Request& req, Response& res) {
+    const std::string name = req.matches[1];
+    auto patch = parse_vehicle_patch(req.body, name);
     if (!patch.ok()) return send_error(res, patch.error());
-    apply_and_respond(res, UpdateVehicle{patch.value()}, *name, 200);
+    apply_and_respond(res, patch.value(), name, 200);
   });
-  server_.Delete(vehicle_pattern, [this, vehicle_name](const Request& req, Response& res) {
-    if (auto name = vehicle_name(req, res))
-      apply_and_respond(res, RemoveVehicle{*name}, *name, 204);
+  server_.Delete(vehicle_pattern, [this](const Request& req, Response& res) {
+    const std::string name = req.matches[1];
+    apply_and_respond(res, RemoveVehicle{name}, name, 204);
   });
 
   // Known paths with the wrong method: 405 with Allow.

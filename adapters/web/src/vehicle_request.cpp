@@ -1,9 +1,9 @@
 #include "mocaplink/web/vehicle_request.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
-#include <set>
+#include <cstdint>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -44,98 +44,55 @@ ApiResult<json> parse_object(std::string_view text) {
   return parsed;
 }
 
-bool has_control_characters(std::string_view s) {
-  return std::any_of(s.begin(), s.end(),
-                     [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
-}
-
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+/// A JSON value as the typed value of a [[vehicle]] key; its range and spelling are the
+/// configuration's to check. Null, objects and arrays holding anything but strings have no such
+/// type.
+ApiResult<config::VehicleKey> vehicle_key(const std::string& key, const json& value) {
+  config::VehicleKey out{key, std::string()};
+  if (value.is_string()) {
+    out.value = value.get<std::string>();
+  } else if (value.is_boolean()) {
+    out.value = value.get<bool>();
+  } else if (value.is_number_unsigned() &&
+             value.get<std::uint64_t>() >
+                 static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
+    out.value = value.get<double>();  // out of every range anyway
+  } else if (value.is_number_integer()) {
+    out.value = value.get<std::int64_t>();
+  } else if (value.is_number()) {
+    out.value = value.get<double>();
+  } else if (value.is_array() &&
+             std::all_of(value.begin(), value.end(), [](const json& j) { return j.is_string(); })) {
+    out.value = value.get<std::vector<std::string>>();
+  } else {
+    return invalid(key, "expected a string, a number, true or false, or an array of strings, got " +
+                            value.dump());
+  }
   return out;
 }
 
-ApiResult<std::string> get_string(const json& object, const std::string& key,
-                                  std::size_t max_length) {
-  const json& value = object.at(key);
-  if (!value.is_string()) return invalid(key, "must be a string");
-  std::string s = value.get<std::string>();
-  if (s.size() > max_length) {
-    return invalid(key, "must be at most " + std::to_string(max_length) + " bytes");
+/// Reads every key of `object` but `paused` into `keys`; the first unusable one is the error.
+std::optional<ApiError> read_keys(const json& object, std::vector<config::VehicleKey>& keys) {
+  for (const auto& [key, value] : object.items()) {
+    if (key == "paused") continue;
+    auto typed = vehicle_key(key, value);
+    if (!typed.ok()) return typed.error();
+    keys.push_back(typed.value());
   }
-  if (has_control_characters(s)) return invalid(key, "must not contain control characters");
-  return s;
-}
-
-ApiResult<double> get_rate(const json& object) {
-  const json& value = object.at("rate_hz");
-  if (!value.is_number()) return invalid("rate_hz", "must be a number");
-  const double rate = value.get<double>();
-  if (!std::isfinite(rate) || rate <= 0.0 || rate > core::kMaxSenderRateHz) {
-    return invalid("rate_hz",
-                   "must be > 0 and <= " + core::max_rate_text() + ", got " + value.dump());
-  }
-  return rate;
-}
-
-ApiResult<std::vector<std::string>> get_messages(const json& object) {
-  const json& value = object.at("messages");
-  if (!value.is_array()) return invalid("messages", "must be an array of message names");
-  std::vector<std::string> messages;
-  std::set<std::string> seen;
-  for (const json& item : value) {
-    const auto& names = message_names();
-    if (!item.is_string() ||
-        std::find(names.begin(), names.end(), item.get<std::string>()) == names.end()) {
-      return invalid("messages", "unknown message " + item.dump() + "; expected " + join(names));
-    }
-    if (!seen.insert(item.get<std::string>()).second) {
-      return invalid("messages", "duplicate message " + item.dump());
-    }
-    messages.push_back(item.get<std::string>());
-  }
-  return messages;
-}
-
-ApiResult<bool> get_bool(const json& object, const std::string& key) {
-  const json& value = object.at(key);
-  if (!value.is_boolean()) return invalid(key, "must be true or false");
-  return value.get<bool>();
-}
-
-// Reads `key` with `get` into `out` when present; returns the error when it is invalid.
-template <typename T, typename Get>
-std::optional<ApiError> read_optional(const json& object, const char* key, Get get, T& out) {
-  if (!object.contains(key)) return std::nullopt;
-  auto value = get(object);
-  if (!value.ok()) return value.error();
-  out = value.value();
   return std::nullopt;
 }
 
-ApiResult<bool> get_paused(const json& object) {
-  return get_bool(object, "paused");
+/// `paused`, when given: the API's own key (not one of a [[vehicle]] table).
+std::optional<ApiError> read_paused(const json& object, std::optional<bool>& paused) {
+  if (!object.contains("paused")) return std::nullopt;
+  if (!object.at("paused").is_boolean()) return invalid("paused", "must be true or false");
+  paused = object.at("paused").get<bool>();
+  return std::nullopt;
 }
 
 }  // namespace
 
-const std::vector<std::string>& profile_names() {
-  static const std::vector<std::string> names(core::profile_names().begin(),
-                                              core::profile_names().end());
-  return names;
-}
-
-const std::vector<std::string>& message_names() {
-  static const std::vector<std::string> names(core::message_kind_names().begin(),
-                                              core::message_kind_names().end());
-  return names;
-}
-
-bool is_valid_vehicle_name(std::string_view name) {
-  return core::is_valid_vehicle_name(name);
-}
-
-ApiResult<VehicleSpec> parse_vehicle_spec(std::string_view json_text) {
+ApiResult<AddVehicle> parse_vehicle_spec(std::string_view json_text) {
   auto parsed = parse_object(json_text);
   if (!parsed.ok()) return parsed.error();
   const json& object = parsed.value();
@@ -143,69 +100,21 @@ ApiResult<VehicleSpec> parse_vehicle_spec(std::string_view json_text) {
                                        "rate_hz", "signing_key", "paused"})) {
     return *error;
   }
-  for (const char* required : {"name", "body", "link"}) {
-    if (!object.contains(required)) return invalid(required, "is required");
+  AddVehicle add;
+  std::optional<bool> paused;
+  if (auto error = read_paused(object, paused)) return *error;
+  add.paused = paused.value_or(false);
+  if (auto error = read_keys(object, add.keys)) return *error;
+  // docs/api.md: the API's defaults for the two keys a [[vehicle]] table must give.
+  if (!object.contains("system_id")) add.keys.push_back({"system_id", std::int64_t{1}});
+  if (!object.contains("profile")) add.keys.push_back({"profile", std::string("px4")});
+  if (object.contains("name") && object.at("name").is_string()) {
+    add.name = object.at("name").get<std::string>();
   }
-  VehicleSpec spec;
-  auto name = get_string(object, "name", core::kMaxVehicleNameLength);
-  if (!name.ok()) return name.error();
-  if (!is_valid_vehicle_name(name.value())) {
-    return invalid("name", "must be 1.." + std::to_string(core::kMaxVehicleNameLength) +
-                               " characters of A-Z a-z 0-9 _ . -");
-  }
-  spec.name = name.value();
-
-  auto body = get_string(object, "body", core::kMaxBodyNameLength);
-  if (!body.ok()) return body.error();
-  if (body.value().empty()) return invalid("body", "must not be empty");
-  spec.body = body.value();
-
-  auto link = get_string(object, "link", kMaxLinkLength);
-  if (!link.ok()) return link.error();
-  const std::string& url = link.value();
-  if (url.rfind("udp://", 0) != 0 && url.rfind("tcp://", 0) != 0 &&
-      url.rfind("serial://", 0) != 0) {
-    return invalid("link", "must be udp://host:port, tcp://host:port or serial:///dev/...");
-  }
-  spec.link = url;
-
-  if (object.contains("system_id")) {
-    const json& value = object.at("system_id");
-    if (!value.is_number_integer() || value.get<std::int64_t>() < 1 ||
-        value.get<std::int64_t>() > 255) {
-      return invalid("system_id", "must be an integer 1..255, got " + value.dump());
-    }
-    spec.system_id = static_cast<std::uint8_t>(value.get<std::int64_t>());
-  }
-  if (object.contains("profile")) {
-    auto profile = get_string(object, "profile", 32);
-    const auto& names = profile_names();
-    if (!profile.ok() || std::find(names.begin(), names.end(), profile.value()) == names.end()) {
-      return invalid("profile", "must be one of " + join(names));
-    }
-    spec.profile = profile.value();
-  }
-  if (auto error = read_optional(object, "messages", get_messages, spec.messages)) return *error;
-  if (spec.profile == "custom" && spec.messages.empty()) {
-    return invalid("messages", "profile \"custom\" needs at least one message");
-  }
-  if (spec.profile != "custom" && !spec.messages.empty()) {
-    return invalid("messages", "only profile \"custom\" takes a message list");
-  }
-  if (auto error = read_optional(object, "rate_hz", get_rate, spec.rate_hz)) return *error;
-  if (object.contains("signing_key")) {
-    auto key = get_string(object, "signing_key", 64);
-    if (!key.ok() ||
-        !(key.value().empty() || (key.value().size() == 64 && text::is_hex(key.value())))) {
-      return invalid("signing_key", "must be \"\" or 64 hex digits");
-    }
-    spec.signing_key = key.value();
-  }
-  if (auto error = read_optional(object, "paused", get_paused, spec.paused)) return *error;
-  return spec;
+  return add;
 }
 
-ApiResult<VehiclePatch> parse_vehicle_patch(std::string_view json_text, std::string name) {
+ApiResult<UpdateVehicle> parse_vehicle_patch(std::string_view json_text, std::string name) {
   auto parsed = parse_object(json_text);
   if (!parsed.ok()) return parsed.error();
   const json& object = parsed.value();
@@ -213,12 +122,16 @@ ApiResult<VehiclePatch> parse_vehicle_patch(std::string_view json_text, std::str
   if (object.empty()) {
     return ApiError{422, "nothing to change: give rate_hz, messages or paused", ""};
   }
-  VehiclePatch patch;
-  patch.name = std::move(name);
-  if (auto error = read_optional(object, "rate_hz", get_rate, patch.rate_hz)) return *error;
-  if (auto error = read_optional(object, "messages", get_messages, patch.messages)) return *error;
-  if (auto error = read_optional(object, "paused", get_paused, patch.paused)) return *error;
-  return patch;
+  UpdateVehicle update;
+  update.name = std::move(name);
+  if (auto error = read_paused(object, update.paused)) return *error;
+  if (auto error = read_keys(object, update.keys)) return *error;
+  return update;
+}
+
+ApiError refusal(const config::ConfigError& error) {
+  return ApiError{422, error.key.empty() ? error.message : error.key + ": " + error.message,
+                  error.key};
 }
 
 }  // namespace mocaplink::web

@@ -1,10 +1,12 @@
-// add_vehicle (load.hpp): one [[vehicle]] from typed key/value pairs, checked against a running
-// Config by the same key handlers and cross-checks as a file.
+// add_vehicle and update_vehicle (load.hpp): one [[vehicle]] from typed key/value pairs, or a
+// change to a running one, checked against a running Config by the same key handlers and
+// cross-checks as a file.
 #include <algorithm>
 #include <string>
 
 #include "draft.hpp"
 #include "mocaplink/config/load.hpp"
+#include "text_util.hpp"
 
 namespace mocaplink::config {
 namespace {
@@ -61,15 +63,10 @@ std::optional<detail::Value> typed(const VehicleKey& key, detail::ValueType type
   return std::nullopt;
 }
 
-}  // namespace
-
-ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
-                         std::string_view origin) {
-  detail::ConfigDraft draft = detail::draft_from_config(base, "configuration");
-  detail::Diagnostics diagnostics;
-  const detail::Where where{std::string(origin)};
-  detail::VehicleDraft vehicle;
-  vehicle.header = where;
+/// Reads typed keys into `vehicle` with the [[vehicle]] key handlers: unknown keys, keys given
+/// twice and values of the wrong type are reported like a file's.
+void read_keys(const std::vector<VehicleKey>& keys, const detail::Where& where,
+               detail::VehicleDraft& vehicle, detail::Diagnostics& diagnostics) {
   const auto specs = detail::vehicle_keys();
   std::vector<std::string_view> names;
   for (const auto& s : specs) names.push_back(s.name);
@@ -95,16 +92,70 @@ ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys
       vehicle.mistyped.push_back(key.key);
     }
   }
-  draft.vehicles.push_back(std::move(vehicle));
+}
+
+/// finalize(), keeping only the warnings located at `origin`: the other vehicles' warnings were
+/// given when they came.
+ConfigResult finish(const detail::ConfigDraft& draft, detail::Diagnostics& diagnostics,
+                    std::string_view origin) {
   ConfigResult result;
   result.config = detail::finalize(draft, diagnostics);
   result.errors = std::move(diagnostics.errors);
-  // Only what concerns the new vehicle: the others' warnings were given when they came.
   for (auto& w : diagnostics.warnings) {
     if (w.file == origin) result.warnings.push_back(std::move(w));
   }
   if (!result.errors.empty()) result.config.reset();
   return result;
+}
+
+}  // namespace
+
+ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
+                         std::string_view origin) {
+  detail::ConfigDraft draft = detail::draft_from_config(base, "configuration");
+  detail::Diagnostics diagnostics;
+  const detail::Where where{std::string(origin)};
+  detail::VehicleDraft vehicle;
+  vehicle.header = where;
+  read_keys(keys, where, vehicle, diagnostics);
+  draft.vehicles.push_back(std::move(vehicle));
+  return finish(draft, diagnostics, origin);
+}
+
+ConfigResult update_vehicle(const Config& base, std::string_view name,
+                            const std::vector<VehicleKey>& keys, std::string_view origin) {
+  detail::ConfigDraft draft = detail::draft_from_config(base, "configuration");
+  detail::Diagnostics diagnostics;
+  const detail::Where where{std::string(origin)};
+  const auto target =
+      std::find_if(draft.vehicles.begin(), draft.vehicles.end(),
+                   [&](const auto& v) { return v.name.value && *v.name.value == name; });
+  if (target == draft.vehicles.end()) {
+    diagnostics.error(where, "", "no vehicle named " + detail::quoted(name));
+    return finish(draft, diagnostics, origin);
+  }
+  detail::VehicleDraft changes;
+  changes.header = where;
+  read_keys(keys, where, changes, diagnostics);
+  const auto specs = detail::vehicle_keys();
+  for (const VehicleKey& key : keys) {
+    const bool known =
+        std::any_of(specs.begin(), specs.end(), [&](const auto& s) { return s.name == key.key; });
+    if (known && key.key != "rate_hz" && key.key != "messages") {
+      diagnostics.error(where, key.key,
+                        "cannot change while the vehicle runs (only rate_hz and messages can); "
+                        "remove the vehicle and add it again");
+    }
+  }
+  // The live message set: any profile, may be empty; the GPS-type ones need the [origin].
+  if (const auto& messages = changes.messages.value; messages && !base.origin) {
+    if (core::MessageSet(*messages).needs_origin()) {
+      diagnostics.error(where, changes.messages.key, detail::kGpsNeedsOrigin);
+    }
+  }
+  changes.messages = {};  // not the configured list of a custom profile: the Bridge holds it
+  detail::merge(*target, changes);
+  return finish(draft, diagnostics, origin);
 }
 
 }  // namespace mocaplink::config

@@ -139,6 +139,15 @@ struct KeySpec {
 [[nodiscard]] bool read_toml(std::string_view text, std::string_view filename, ConfigDraft& draft,
                              Diagnostics& diagnostics);
 
+/// Replaces the fields of `target` that `source` gives (overrides.cpp): how `--vehicle NAME:...`
+/// and update_vehicle change an existing vehicle.
+void merge(VehicleDraft& target, const VehicleDraft& source);
+
+/// The error for GPS-type messages without an [origin] (finalize.cpp, add_vehicle.cpp).
+inline constexpr const char* kGpsNeedsOrigin =
+    "GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin] table (latitude_deg, longitude_deg, "
+    "altitude_m)";
+
 /// Applies command-line overrides to a draft (overrides.cpp).
 void apply_command_line(const std::optional<std::string>& source,
                         const std::optional<std::string>& http,

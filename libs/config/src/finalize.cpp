@@ -140,9 +140,7 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   if (gps && !have_origin && !d.origin_header) {
     const bool by_profile = out.profile != core::Profile::custom;
     const auto& where = by_profile ? v.profile.where : v.messages.where;
-    diagnostics.error(where, by_profile ? v.profile.key : v.messages.key,
-                      "GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin] table "
-                      "(latitude_deg, longitude_deg, altitude_m)");
+    diagnostics.error(where, by_profile ? v.profile.key : v.messages.key, kGpsNeedsOrigin);
     ok = false;
   }
   out.body_forward = value_or(v.body_forward, mocap.body_forward);

@@ -71,6 +71,8 @@ void overwrite(Field& target, const Field& source) {
   if (source.present) target = source;
 }
 
+}  // namespace
+
 void merge(VehicleDraft& target, const VehicleDraft& source) {
   overwrite(target.body, source.body);
   overwrite(target.link, source.link);
@@ -85,6 +87,8 @@ void merge(VehicleDraft& target, const VehicleDraft& source) {
   overwrite(target.enabled, source.enabled);
   target.mistyped.insert(target.mistyped.end(), source.mistyped.begin(), source.mistyped.end());
 }
+
+namespace {
 
 /// Parses one --vehicle SPEC into a draft holding only the keys it gives.
 std::optional<VehicleDraft> parse_vehicle_spec(std::string_view spec, const Where& where,

@@ -10,8 +10,10 @@
 namespace mocaplink::core {
 namespace {
 
-std::string vehicle_field(std::size_t index, std::string_view key) {
-  return "vehicles[" + std::to_string(index) + "]." + std::string(key);
+/// "vehicle[N].key", numbered from 1 as the configuration numbers its [[vehicle]] tables (slot i
+/// holds config vehicle i at make()).
+std::string vehicle_field(std::size_t slot, std::string_view key) {
+  return "vehicle[" + std::to_string(slot + 1) + "]." + std::string(key);
 }
 
 }  // namespace
@@ -173,6 +175,11 @@ bool Bridge::remove_vehicle(std::size_t slot) {
     if (v && v->body > body) --v->body;
   }
   return true;
+}
+
+const VehicleSpec* Bridge::vehicle(std::size_t slot) const {
+  if (slot >= vehicles_.size() || !vehicles_[slot]) return nullptr;
+  return &vehicles_[slot]->spec;
 }
 
 std::optional<std::size_t> Bridge::find_vehicle(std::string_view name) const {

@@ -11,6 +11,17 @@ namespace {
 
 using nlohmann::json;
 
+/// The value of `key` among the keys the server passed on; std::nullopt when it did not.
+std::optional<config::VehicleKey::Value> key_value(const std::vector<config::VehicleKey>& keys,
+                                                   const std::string& key) {
+  for (const auto& k : keys) {
+    if (k.key == key) return k.value;
+  }
+  return std::nullopt;
+}
+
+using Value = config::VehicleKey::Value;
+
 const json kNewVehicle = {{"name", "hexa"},
                           {"body", "Body2"},
                           {"link", "udp://10.0.0.7:14540"},
@@ -34,14 +45,20 @@ TEST_F(ApiTest, PostAddsAVehicleAndReturnsIt) {
   ASSERT_EQ(applied.size(), 1U);
   const auto* add = std::get_if<AddVehicle>(&applied[0]);
   ASSERT_NE(add, nullptr);
-  EXPECT_EQ(add->spec.name, "hexa");
-  EXPECT_EQ(add->spec.body, "Body2");
-  EXPECT_EQ(add->spec.link, "udp://10.0.0.7:14540");
-  EXPECT_EQ(add->spec.system_id, 7);
-  EXPECT_EQ(add->spec.profile, "custom");
-  EXPECT_DOUBLE_EQ(add->spec.rate_hz, 30.0);
-  EXPECT_TRUE(add->spec.paused);
-  EXPECT_EQ(add->spec.signing_key, "");
+  // The [[vehicle]] keys go on typed as JSON gave them; `paused` is the API's own.
+  EXPECT_EQ(add->name, "hexa");
+  EXPECT_EQ(add->keys.size(), 7U);
+  EXPECT_EQ(key_value(add->keys, "name"), Value(std::string("hexa")));
+  EXPECT_EQ(key_value(add->keys, "body"), Value(std::string("Body2")));
+  EXPECT_EQ(key_value(add->keys, "link"), Value(std::string("udp://10.0.0.7:14540")));
+  EXPECT_EQ(key_value(add->keys, "system_id"), Value(std::int64_t{7}));
+  EXPECT_EQ(key_value(add->keys, "profile"), Value(std::string("custom")));
+  EXPECT_EQ(key_value(add->keys, "messages"),
+            Value(std::vector<std::string>{"vision_position_estimate", "vision_speed_estimate"}));
+  EXPECT_EQ(key_value(add->keys, "rate_hz"), Value(std::int64_t{30}));
+  EXPECT_FALSE(key_value(add->keys, "paused"));
+  EXPECT_FALSE(key_value(add->keys, "signing_key"));
+  EXPECT_TRUE(add->paused);
 
   const json vehicles = body_json(get("/api/vehicles"));
   ASSERT_EQ(vehicles.size(), 3U);  // the change shows at once (no stale cached status)
@@ -69,12 +86,20 @@ TEST_F(ApiTest, PostDefaultsFollowTheConfigFile) {
   ASSERT_EQ(res->status, 201) << res->body;
   const auto applied = backend_.applied();
   ASSERT_EQ(applied.size(), 1U);
-  const auto& spec = std::get<AddVehicle>(applied[0]).spec;
-  EXPECT_EQ(spec.system_id, 1);
-  EXPECT_EQ(spec.profile, "px4");
-  EXPECT_TRUE(spec.messages.empty());
-  EXPECT_DOUBLE_EQ(spec.rate_hz, 50.0);
-  EXPECT_FALSE(spec.paused);
+  // The given keys go on, with the API's defaults for system_id and profile (a file must give
+  // them); the other defaults are the configuration's.
+  const auto& add = std::get<AddVehicle>(applied[0]);
+  EXPECT_EQ(add.keys.size(), 5U);
+  EXPECT_EQ(key_value(add.keys, "system_id"), Value(std::int64_t{1}));
+  EXPECT_EQ(key_value(add.keys, "profile"), Value(std::string("px4")));
+  EXPECT_FALSE(key_value(add.keys, "rate_hz"));
+  EXPECT_FALSE(add.paused);
+  const json created = body_json(res);
+  EXPECT_EQ(created["system_id"], 1);
+  EXPECT_EQ(created["profile"], "px4");
+  EXPECT_EQ(created["messages"], json::array({"odometry"}));
+  EXPECT_DOUBLE_EQ(created["rate_hz"].get<double>(), 50.0);
+  EXPECT_EQ(created["paused"], false);
 }
 
 struct BadPost {
@@ -101,23 +126,26 @@ TEST_F(ApiTest, EveryInvalidPostIsRefusedNamingTheFieldAndChangesNothing) {
       {without("name"), 422, "name", "required"},
       {without("body"), 422, "body", "required"},
       {without("link"), 422, "link", "required"},
-      {with("name", "quad 1"), 422, "name", "A-Z"},
-      {with("name", std::string(65, 'a')), 422, "name", "at most 64"},
-      {with("name", 5), 422, "name", "string"},
-      {with("body", ""), 422, "body", "empty"},
+      {with("name", "quad 1"), 422, "name", "1 to 64 letters, digits"},
+      {with("name", std::string(65, 'a')), 422, "name", "1 to 64 letters, digits"},
+      {with("name", 5), 422, "name", "expected a string, got an integer"},
+      {with("body", ""), 422, "body", "1 to 256 characters"},
       {with("body", "a\nb"), 422, "body", "control"},
       {with("link", "http://10.0.0.2"), 422, "link", "udp://"},
-      {with("system_id", 0), 422, "system_id", "1..255"},
-      {with("system_id", 256), 422, "system_id", "1..255"},
-      {with("system_id", 1.5), 422, "system_id", "integer"},
+      {with("system_id", 0), 422, "system_id", "from 1 to 255, got 0"},
+      {with("system_id", 256), 422, "system_id", "from 1 to 255, got 256"},
+      {with("system_id", 1.5), 422, "system_id", "expected an integer, got a number"},
       {with("profile", "px5"), 422, "profile", "px4"},
-      {with("rate_hz", 0), 422, "rate_hz", "> 0"},
-      {with("rate_hz", 500.5), 422, "rate_hz", "<= 500"},
-      {with("rate_hz", "50"), 422, "rate_hz", "number"},
-      {with("messages", json::array({"odometry"})), 422, "messages", "only profile \"custom\""},
-      {with("messages", "odometry"), 422, "messages", "array"},
-      {with("signing_key", "abc"), 422, "signing_key", "64 hex"},
-      {with("signing_key", std::string(64, 'g')), 422, "signing_key", "64 hex"},
+      {with("rate_hz", 0), 422, "rate_hz", "must be above 0 and at most 500, got 0"},
+      {with("rate_hz", 500.5), 422, "rate_hz", "at most 500, got 500.5"},
+      {with("rate_hz", "50"), 422, "rate_hz", "expected a number, got a string"},
+      {with("messages", json::array({"odometry"})), 422, "messages",
+       "only allowed with profile = \"custom\""},
+      {with("messages", "odometry"), 422, "messages", "expected an array of strings"},
+      {with("messages", json::array({1})), 422, "messages", "an array of strings, got [1]"},
+      {with("body", nullptr), 422, "body", "got null"},
+      {with("signing_key", "abc"), 422, "signing_key", "64 hexadecimal characters"},
+      {with("signing_key", std::string(64, 'g')), 422, "signing_key", "including non-hex"},
       {with("paused", "yes"), 422, "paused", "true or false"},
       {with("rate", 50), 422, "rate", "did you mean \"rate_hz\""},
       {with("colour", "red"), 422, "colour", "expected one of"},
@@ -131,10 +159,10 @@ TEST_F(ApiTest, EveryInvalidPostIsRefusedNamingTheFieldAndChangesNothing) {
     return v.dump();
   };
   std::vector<BadPost> custom_cases = {
-      {custom(nullptr), 422, "messages", "at least one"},
+      {custom(nullptr), 422, "messages", "needs a messages list"},
       {custom(json::array()), 422, "messages", "at least one"},
       {custom({"odometry", "teleport"}), 422, "messages", "unknown message \"teleport\""},
-      {custom({"odometry", "odometry"}), 422, "messages", "duplicate"},
+      {custom({"odometry", "odometry"}), 422, "messages", "\"odometry\" is listed twice"},
   };
   std::vector<BadPost> all = cases;
   all.insert(all.end(), custom_cases.begin(), custom_cases.end());
@@ -171,20 +199,24 @@ TEST_F(ApiTest, PatchChangesRateMessagesAndPauseAtOnce) {
 
   const auto applied = backend_.applied();
   ASSERT_EQ(applied.size(), 3U);
-  const auto& first = std::get<UpdateVehicle>(applied[0]).patch;
+  const auto& first = std::get<UpdateVehicle>(applied[0]);
   EXPECT_EQ(first.name, "quad1");
-  EXPECT_EQ(first.rate_hz, 12.5);
-  EXPECT_FALSE(first.messages.has_value());
+  EXPECT_EQ(key_value(first.keys, "rate_hz"), Value(12.5));
+  EXPECT_FALSE(key_value(first.keys, "messages"));
   EXPECT_FALSE(first.paused.has_value());
-  const auto& third = std::get<UpdateVehicle>(applied[2]).patch;
+  const auto& third = std::get<UpdateVehicle>(applied[2]);
   EXPECT_EQ(third.paused, true);
-  EXPECT_FALSE(third.rate_hz.has_value());
+  EXPECT_FALSE(key_value(third.keys, "rate_hz"));
+  EXPECT_EQ(key_value(third.keys, "messages"), Value(std::vector<std::string>{"hil_gps"}));
 }
 
 TEST_F(ApiTest, EveryInvalidPatchIsRefusedAndNothingIsHalfApplied) {
   const std::vector<BadPost> cases = {
-      {R"({"paused": true, "rate_hz": -1})", 422, "rate_hz", "> 0"},
-      {R"({"paused": true, "messages": ["odometry", "nope"]})", 422, "messages", "unknown"},
+      {R"({"paused": true, "rate_hz": -1})", 422, "rate_hz", "above 0 and at most 500, got -1"},
+      {R"({"rate_hz": 20, "messages": ["odometry", "odometry"]})", 422, "messages", "twice"},
+      {R"({"messages": "odometry"})", 422, "messages", "expected an array of strings"},
+      {R"({"paused": true, "messages": ["odometry", "nope"]})", 422, "messages",
+       "unknown message \"nope\""},
       {R"({"rate_hz": 20, "paused": 1})", 422, "paused", "true or false"},
       {R"({"rate_hz": 20, "profile": "ardupilot"})", 422, "profile", "unknown key"},
       {R"({})", 422, "", "nothing to change"},

@@ -4,34 +4,57 @@
 #include <cmath>
 #include <numbers>
 
+#include "mocaplink/config/load.hpp"
 #include "mocaplink/core/profile.hpp"
 
 namespace mocaplink::web::testing {
 namespace {
 
-VehicleView make_vehicle(const VehicleSpec& spec) {
+/// The fake lab's configuration: the daemon's refusal rules are the configuration's
+/// (config::add_vehicle / update_vehicle), so the fake applies them too.
+const char* const kLab = R"(
+[mocap]
+source = "sim://?bodies=3"
+[origin]
+latitude_deg = 47.3977
+longitude_deg = 8.5456
+altitude_m = 488.0
+[[vehicle]]
+name = "quad1"
+body = "Body1"
+link = "udp://127.0.0.1:14540"
+system_id = 1
+profile = "px4"
+[[vehicle]]
+name = "rover"
+body = "Body2"
+link = "udp://127.0.0.1:14541"
+system_id = 2
+profile = "custom"
+messages = ["hil_gps", "local_position_ned", "att_pos_mocap"]
+rate_hz = 20
+)";
+
+VehicleView make_vehicle(const config::Vehicle& vehicle, bool paused) {
   VehicleView v;
-  v.name = spec.name;
-  v.body = spec.body;
-  v.link = spec.link;
-  v.system_id = spec.system_id;
-  v.profile = spec.profile;
-  v.rate_hz = spec.rate_hz;
-  v.paused = spec.paused;
+  v.name = vehicle.name;
+  v.body = vehicle.body;
+  v.link = config::to_string(vehicle.link);
+  v.system_id = vehicle.system_id;
+  v.profile = std::string(core::to_string(vehicle.profile));
+  v.rate_hz = vehicle.rate_hz;
+  v.paused = paused;
   // What a profile sends and whether it sets the origin come from the core, as in the daemon
   // (the fake has an [origin] configured).
-  const core::Profile profile = core::parse_profile(spec.profile).value_or(core::Profile::px4);
-  std::vector<core::MessageKind> custom;
-  for (const auto& name : spec.messages) {
-    if (const auto kind = core::parse_message_kind(name)) custom.push_back(*kind);
-  }
-  const core::MessageSet messages = core::messages_for(profile, custom);
+  const core::MessageSet messages = core::messages_for(vehicle.profile, vehicle.messages);
   for (const core::MessageKind kind : core::message_kinds()) {
     if (messages.contains(kind)) v.messages.emplace_back(core::to_string(kind));
   }
-  v.available_messages = message_names();
-  v.origin = core::sends_origin(profile, messages) ? OriginState::sending : OriginState::not_needed;
-  v.timesync.state = spec.profile == "px4" ? TimesyncState::waiting : TimesyncState::off;
+  for (const auto name : core::message_kind_names()) v.available_messages.emplace_back(name);
+  v.origin = core::sends_origin(vehicle.profile, messages) ? OriginState::sending
+                                                           : OriginState::not_needed;
+  v.timesync.state =
+      vehicle.profile == core::Profile::px4 ? TimesyncState::waiting : TimesyncState::off;
   return v;
 }
 
@@ -50,13 +73,10 @@ std::array<double, 3> fake_body_position(std::size_t index, double t_s) {
 }
 
 FakeBackend::FakeBackend() {
-  VehicleSpec quad{"quad1", "Body1", "udp://127.0.0.1:14540", 1, "px4", {}, 50.0, "", false};
-  // rover: the classic message set as a custom profile, which sends the origin (classic does not).
-  VehicleSpec rover{"rover", "Body2",  "udp://127.0.0.1:14541",
-                    2,       "custom", {"hil_gps", "local_position_ned", "att_pos_mocap"},
-                    20.0,    "",       false};
-  vehicles_.push_back(Vehicle{make_vehicle(quad), 0.0, 0.0});
-  vehicles_.push_back(Vehicle{make_vehicle(rover), 0.0, 0.0});
+  config_ = *config::parse_config(kLab, "fake lab").config;
+  for (const auto& vehicle : config_.vehicles) {
+    vehicles_.push_back(Vehicle{make_vehicle(vehicle, false), 0.0, 0.0});
+  }
   // quad1 talks back: heartbeat, timesync, origin confirmed, agreeing estimate.
   VehicleView& q = vehicles_[0].view;
   q.link_state = LinkState::up;
@@ -141,41 +161,58 @@ std::optional<ApiError> FakeBackend::apply(const VehicleChange& change) {
     return std::find_if(vehicles_.begin(), vehicles_.end(),
                         [&](const Vehicle& v) { return v.view.name == name; });
   };
-  std::optional<ApiError> refusal;
+  auto find_config = [this](const std::string& name) -> const config::Vehicle& {
+    return *std::find_if(config_.vehicles.begin(), config_.vehicles.end(),
+                         [&](const config::Vehicle& v) { return v.name == name; });
+  };
+  std::optional<ApiError> refused;
   std::visit(
       [&](const auto& c) {
         using T = std::decay_t<decltype(c)>;
         if constexpr (std::is_same_v<T, AddVehicle>) {
-          if (find(c.spec.name) != vehicles_.end()) {
-            refusal = ApiError{409, "a vehicle named \"" + c.spec.name + "\" exists", "name"};
-          } else if (c.spec.link.find(':', c.spec.link.find("//") + 2) == std::string::npos &&
-                     c.spec.link.rfind("serial://", 0) != 0) {
-            // What the daemon's link parser says about udp://host without a port.
-            refusal = ApiError{422, "link: missing port", "link"};
-          } else {
-            vehicles_.push_back(Vehicle{make_vehicle(c.spec), t_s_, 0.0});
-          }
-        } else if constexpr (std::is_same_v<T, RemoveVehicle>) {
-          auto it = find(c.name);
-          if (it == vehicles_.end())
-            refusal = ApiError{404, "no vehicle named " + c.name, ""};
-          else
-            vehicles_.erase(it);
-        } else {
-          auto it = find(c.patch.name);
-          if (it == vehicles_.end()) {
-            refusal = ApiError{404, "no vehicle named " + c.patch.name, ""};
+          if (find(c.name) != vehicles_.end()) {
+            refused = ApiError{409, "a vehicle named \"" + c.name + "\" exists", "name"};
             return;
           }
+          auto added = config::add_vehicle(config_, c.keys, "POST /api/vehicles");
+          if (!added.ok()) {
+            refused = refusal(added.errors.front());
+            return;
+          }
+          config_ = std::move(*added.config);
+          vehicles_.push_back(Vehicle{make_vehicle(config_.vehicles.back(), c.paused), t_s_, 0.0});
+        } else if constexpr (std::is_same_v<T, RemoveVehicle>) {
+          auto it = find(c.name);
+          if (it == vehicles_.end()) {
+            refused = ApiError{404, "no vehicle named " + c.name, ""};
+            return;
+          }
+          vehicles_.erase(it);
+          std::erase_if(config_.vehicles, [&](const auto& v) { return v.name == c.name; });
+        } else {
+          auto it = find(c.name);
+          if (it == vehicles_.end()) {
+            refused = ApiError{404, "no vehicle named " + c.name, ""};
+            return;
+          }
+          auto updated = config::update_vehicle(config_, c.name, c.keys, "PATCH");
+          if (!updated.ok()) {
+            refused = refusal(updated.errors.front());
+            return;
+          }
+          config_ = std::move(*updated.config);
           accrue(*it);  // counters up to now at the old rate
-          if (c.patch.rate_hz) it->view.rate_hz = *c.patch.rate_hz;
-          if (c.patch.messages) it->view.messages = *c.patch.messages;
-          if (c.patch.paused) it->view.paused = *c.patch.paused;
+          for (const auto& key : c.keys) {
+            if (key.key == "rate_hz") it->view.rate_hz = find_config(c.name).rate_hz;
+            if (key.key == "messages")
+              it->view.messages = std::get<std::vector<std::string>>(key.value);
+          }
+          if (c.paused) it->view.paused = *c.paused;
         }
       },
       change);
-  if (!refusal) applied_.push_back(change);
-  return refusal;
+  if (!refused) applied_.push_back(change);
+  return refused;
 }
 
 void FakeBackend::set_time(double t_s) {

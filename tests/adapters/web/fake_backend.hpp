@@ -1,5 +1,6 @@
 // An in-test DashboardBackend: a small made-up lab (three bodies on known paths, vehicles whose
-// send counters follow their rate) with the daemon's refusal rules, so the dashboard server and
+// send counters follow their rate) with the daemon's refusal rules (the configuration's, through
+// config::add_vehicle / update_vehicle), so the dashboard server and
 // page can be tested without the daemon. Time is injected (seconds) so tests are deterministic;
 // the browser tests' fake server drives it from a steady clock.
 #pragma once
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mocaplink/config/config.hpp"
 #include "mocaplink/web/dashboard_backend.hpp"
 
 namespace mocaplink::web::testing {
@@ -43,6 +45,7 @@ class FakeBackend final : public DashboardBackend {
   double t_s_ = 0.0;
   int status_calls_ = 0;
   std::vector<Vehicle> vehicles_;
+  config::Config config_;  // what the vehicles are, as the daemon's configuration says
   std::vector<VehicleChange> applied_;
   std::optional<StatusView> frozen_;
 };

@@ -42,15 +42,7 @@ async function main() {
   const record = path.join(dir, 'rec');
   const run = h.mocaplink(['run', '--config', config, '--record', record]);
   const [, port] = await h.waitForLog(run, /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//);
-  const api = async (method, route, body) => {
-    const response = await fetch(`http://127.0.0.1:${port}${route}`, {
-      method,
-      headers: body === undefined ? {} : { 'Content-Type': 'application/json' },
-      body: body === undefined ? undefined : JSON.stringify(body),
-    });
-    const text = await response.text();
-    return { status: response.status, json: text ? JSON.parse(text) : undefined, headers: response.headers };
-  };
+  const api = h.dashboardApi(port);
   const names = async () => (await api('GET', '/api/vehicles')).json.map((v) => v.name);
   const roverSpec = {
     name: 'rover', body: 'Body2', link: `udp://127.0.0.1:${rover.port}`, system_id: 2, profile: 'px4', rate_hz: 20,

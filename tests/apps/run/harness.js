@@ -142,6 +142,19 @@ function writeConfig(file, source, vehicles, extra = '') {
   return file;
 }
 
+/// A client of the dashboard API on `port`: api(method, route, body?) → { status, json, headers }.
+function dashboardApi(port) {
+  return async (method, route, body) => {
+    const response = await fetch(`http://127.0.0.1:${port}${route}`, {
+      method,
+      headers: body === undefined ? {} : { 'Content-Type': 'application/json' },
+      body: body === undefined ? undefined : JSON.stringify(body),
+    });
+    const text = await response.text();
+    return { status: response.status, json: text ? JSON.parse(text) : undefined, headers: response.headers };
+  };
+}
+
 /// Sends SIGTERM and waits for the exit; asserts a clean exit (0).
 async function stop(proc) {
   proc.child.kill('SIGTERM');
@@ -151,6 +164,6 @@ async function stop(proc) {
 }
 
 module.exports = {
-  assert, BIN, Decoder, fail, ID, UdpVehicle, decode, mocaplink, sleep, start, stop, tempDir, writeConfig, waitFor,
+  assert, BIN, dashboardApi, Decoder, fail, ID, UdpVehicle, decode, mocaplink, sleep, start, stop, tempDir, writeConfig, waitFor,
   waitForLog,
 };

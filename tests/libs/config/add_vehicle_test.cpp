@@ -1,5 +1,6 @@
-// add_vehicle: a vehicle added to a running configuration (the dashboard's POST /api/vehicles)
-// gets the checks of a [[vehicle]] table, against the vehicles already there.
+// add_vehicle / update_vehicle: a vehicle added to or changed in a running configuration (the
+// dashboard's POST and PATCH /api/vehicles) gets the checks of a [[vehicle]] table, against the
+// vehicles already there.
 #include <string>
 #include <vector>
 
@@ -110,6 +111,113 @@ TEST(AddVehicle, WarnsWhenTheLinkIsShared) {
   const auto next = add_vehicle(*result.config, third, kOrigin);
   ASSERT_TRUE(next.ok());
   EXPECT_TRUE(next.warnings.empty()) << testing::PrintToString(warning_lines(next));
+}
+
+constexpr std::string_view kPatch = "PATCH /api/vehicles/quad2";
+
+/// The demo plus quad2 (ArduPilot at 30 Hz on its own link).
+Config with_quad2() {
+  auto added = add_vehicle(demo_config(), quad2(), kOrigin);
+  EXPECT_TRUE(added.ok());
+  return *added.config;
+}
+
+TEST(UpdateVehicle, ChangesTheRateWithTheWarningsAFileGets) {
+  const auto result =
+      update_vehicle(with_quad2(), "quad2", {{"rate_hz", std::int64_t{60}}}, kPatch);
+  ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+  ASSERT_EQ(result.config->vehicles.size(), 2U);
+  EXPECT_EQ(result.config->vehicles[1].rate_hz, 60.0);
+  EXPECT_EQ(result.config->vehicles[0].rate_hz, demo_config().vehicles[0].rate_hz);
+  // The same warning a [[vehicle]] table with profile = "ardupilot", rate_hz = 60 gets.
+  EXPECT_THAT(warning_lines(result),
+              ElementsAre("PATCH /api/vehicles/quad2: rate_hz: ArduPilot's external-navigation "
+                          "input is meant for at most 50 Hz"));
+  const auto file = parse_config(R"(
+[mocap]
+source = "sim://"
+[[vehicle]]
+name = "quad2"
+body = "Quad2"
+link = "udp://127.0.0.1:14560"
+system_id = 2
+profile = "ardupilot"
+rate_hz = 60
+)",
+                                 "lab.toml");
+  ASSERT_EQ(file.warnings.size(), 1U);
+  EXPECT_EQ(file.warnings[0].message, result.warnings[0].message);
+  // Within ArduPilot's range: nothing to say.
+  EXPECT_TRUE(update_vehicle(with_quad2(), "quad2", {{"rate_hz", 40.0}}, kPatch).warnings.empty());
+}
+
+TEST(UpdateVehicle, RefusesWhatAFileWouldRefuseWithTheSameMessages) {
+  const Config base = with_quad2();
+  auto errors = [&](std::vector<VehicleKey> keys) {
+    return error_lines(update_vehicle(base, "quad2", keys, kPatch));
+  };
+  EXPECT_THAT(errors({{"rate_hz", 0.0}}),
+              ElementsAre("PATCH /api/vehicles/quad2: rate_hz: must be above 0 and at most 500, "
+                          "got 0"));
+  EXPECT_THAT(errors({{"rate_hz", 500.5}}), ElementsAre(HasSubstr("got 500.5")));
+  EXPECT_THAT(errors({{"rate_hz", std::string("50")}}),
+              ElementsAre(HasSubstr("rate_hz: expected a number, got a string")));
+  EXPECT_THAT(errors({{"messages", std::vector<std::string>{"odometry", "nope"}}}),
+              ElementsAre(HasSubstr("messages: unknown message \"nope\"")));
+  EXPECT_THAT(errors({{"messages", std::vector<std::string>{"odometry", "odometry"}}}),
+              ElementsAre(HasSubstr("messages: \"odometry\" is listed twice")));
+  EXPECT_THAT(errors({{"profile", std::string("px4")}}),
+              ElementsAre(HasSubstr("profile: cannot change while the vehicle runs")));
+  EXPECT_THAT(errors({{"rate", 10.0}}),
+              ElementsAre(HasSubstr("rate: unknown key; did you mean \"rate_hz\"?")));
+  EXPECT_THAT(error_lines(update_vehicle(base, "ghost", {{"rate_hz", 10.0}}, kPatch)),
+              ElementsAre(HasSubstr("no vehicle named \"ghost\"")));
+  // GPS-type messages need the [origin], as for a file.
+  Config no_origin = base;
+  no_origin.origin.reset();
+  no_origin.vehicles.pop_back();  // quad2 is px4-only then
+  no_origin = *add_vehicle(no_origin, quad2(), kOrigin).config;
+  EXPECT_THAT(
+      error_lines(update_vehicle(no_origin, "quad2",
+                                 {{"messages", std::vector<std::string>{"hil_gps"}}}, kPatch)),
+      ElementsAre(HasSubstr("messages: GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin]")));
+}
+
+TEST(UpdateVehicle, MessagesAreTheLiveSetForAnyProfile) {
+  const Config base = with_quad2();
+  // ardupilot is not custom, and [] is allowed: the Bridge holds the live set, like a pause.
+  for (const auto& list : {std::vector<std::string>{}, std::vector<std::string>{"hil_gps"}}) {
+    const auto result = update_vehicle(base, "quad2", {{"messages", list}}, kPatch);
+    ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+    EXPECT_EQ(result.config->vehicles[1].profile, core::Profile::ardupilot);
+    EXPECT_TRUE(result.config->vehicles[1].messages.empty());
+  }
+}
+
+TEST(UpdateVehicle, LaterChangesAreCheckedAgainstThePatchedState) {
+  const auto patched = update_vehicle(with_quad2(), "quad2", {{"rate_hz", 60.0}}, kPatch);
+  ASSERT_TRUE(patched.ok());
+  // An add keeps the patched rate (the base of every later change is the state now) ...
+  auto third = quad2();
+  third[0].value = std::string("quad3");
+  third[2].value = std::string("udp://127.0.0.1:14570");
+  const auto added = add_vehicle(*patched.config, third, kOrigin);
+  ASSERT_TRUE(added.ok()) << testing::PrintToString(error_lines(added));
+  EXPECT_EQ(added.config->vehicles[1].rate_hz, 60.0);
+  EXPECT_TRUE(added.warnings.empty() ||
+              added.warnings[0].message.find("quad2") == std::string::npos);
+  // ... and an add that clashes with the patched vehicle is refused naming it.
+  auto clash = third;
+  clash[2].value = std::string("udp://127.0.0.1:14560");
+  EXPECT_THAT(error_lines(add_vehicle(*patched.config, clash, kOrigin)),
+              ElementsAre(HasSubstr("system_id 2 is already used on udp://127.0.0.1:14560 by "
+                                    "vehicle \"quad2\"")));
+  // A later PATCH starts from the patched rate.
+  const auto again =
+      update_vehicle(*patched.config, "quad2", {{"messages", std::vector<std::string>{}}}, kPatch);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again.config->vehicles[1].rate_hz, 60.0);
+  EXPECT_TRUE(again.warnings.empty());  // the rate was not given again: no repeated warning
 }
 
 }  // namespace

@@ -92,16 +92,16 @@ TEST(BridgeConfigCheck, RefusesInvalidConfigs) {
   expect_error(c, "origin");  // GPS_INPUT needs one
   c = two_vehicles();
   c.vehicles[1].name = "quad";
-  expect_error(c, "vehicles[1].name");
+  expect_error(c, "vehicle[2].name");
   c = two_vehicles();
   c.vehicles[0].rate_hz = 0.0;
-  expect_error(c, "vehicles[0].rate_hz");
+  expect_error(c, "vehicle[1].rate_hz");
   c = two_vehicles();
   c.vehicles[0].component_id = 1;
-  expect_error(c, "vehicles[0].component_id");
+  expect_error(c, "vehicle[1].component_id");
   c = two_vehicles();
   c.vehicles[0].profile = Profile::custom;
-  expect_error(c, "vehicles[0].messages");
+  expect_error(c, "vehicle[1].messages");
   c = two_vehicles();
   c.origin = GeodeticPosition{91.0, 0.0, 0.0};
   expect_error(c, "origin");
@@ -369,14 +369,20 @@ TEST(BridgeRuntimeVehicles, AddIsCheckedLikeMake) {
     ASSERT_TRUE(std::holds_alternative<BridgeConfigError>(added)) << field;
     EXPECT_EQ(std::get<BridgeConfigError>(added).field, field);
   };
-  refused(vehicle("quad", "Other", Profile::px4, 2), "vehicles[1].name");
+  refused(vehicle("quad", "Other", Profile::px4, 2), "vehicle[2].name");
   refused(vehicle("gps", "Other", Profile::px4_gps, 2), "origin");
   VehicleSpec fast = vehicle("fast", "Other", Profile::px4, 2);
   fast.rate_hz = 501.0;
-  refused(fast, "vehicles[1].rate_hz");
-  refused(vehicle("", "Other", Profile::px4, 2), "vehicles[1].name");
+  refused(fast, "vehicle[2].rate_hz");
+  refused(vehicle("", "Other", Profile::px4, 2), "vehicle[2].name");
   EXPECT_EQ(bridge.vehicle_count(), 1U);  // nothing half-added
   EXPECT_EQ(bridge.snapshot(HostTime{}).bodies.size(), 1U);
+  // The live vehicle by slot, as added; an empty or unknown slot has none.
+  ASSERT_NE(bridge.vehicle(0), nullptr);
+  EXPECT_EQ(bridge.vehicle(0)->name, c.vehicles[0].name);
+  EXPECT_EQ(bridge.vehicle(1), nullptr);
+  ASSERT_TRUE(bridge.remove_vehicle(0));
+  EXPECT_EQ(bridge.vehicle(0), nullptr);
 }
 
 TEST(BridgeRuntimeVehicles, RemovedVehicleGetsNothingAndItsSlotIsReused) {

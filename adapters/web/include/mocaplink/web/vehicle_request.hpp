@@ -1,18 +1,23 @@
-// Request bodies of the vehicle endpoints (docs/api.md) → validated changes for the backend.
+// Request bodies of the vehicle endpoints (docs/api.md) → changes for the backend.
 //
-// Everything the API itself can check is checked here, before the backend sees anything, and a
-// request is either valid as a whole or refused with the first problem found (nothing is half
-// applied): JSON syntax, object shape, unknown keys, types, ranges and spellings. The backend
-// checks what needs the daemon's state (unique names, link URL details, origin availability) and
-// refuses the same way. Pure functions of their input; never throw.
+// This layer checks only what belongs to the API itself: JSON syntax, that the body is an object,
+// which keys each endpoint takes (with "did you mean"), that `paused` is true or false, and that
+// every other value is a JSON type a [[vehicle]] key can have. The keys then go on as the typed
+// keys of a [[vehicle]] table (config::VehicleKey), and the backend checks their values, ranges
+// and spellings with the configuration's own rules (config::add_vehicle / update_vehicle), so a
+// file, the command line and the dashboard accept the same vehicles and refuse with the same
+// messages. A request is valid as a whole or refused with one problem (nothing is half applied).
+// Pure functions of their input; never throw.
 #pragma once
 
-#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
+
+#include "mocaplink/config/config_error.hpp"
+#include "mocaplink/config/load.hpp"
 
 namespace mocaplink::web {
 
@@ -39,56 +44,34 @@ class [[nodiscard]] ApiResult {
   ApiError error_;
 };
 
-/// The longest link URL the API takes. The rate and name limits are the core's, shared with the
-/// configuration file (core::kMaxSenderRateHz, core::kMaxVehicleNameLength,
-/// core::kMaxBodyNameLength).
-inline constexpr std::size_t kMaxLinkLength = 512;
-
-/// The profiles and pose-message names, in display order: the core's spellings
-/// (core::profile_names, core::message_kind_names), as strings.
-[[nodiscard]] const std::vector<std::string>& profile_names();
-[[nodiscard]] const std::vector<std::string>& message_names();
-
 /// POST /api/vehicles: a new vehicle, with the keys of a [[vehicle]] table.
-struct VehicleSpec {
-  std::string name{};                   ///< 1..64 of [A-Za-z0-9_.-]
-  std::string body{};                   ///< 1..256 bytes, no control characters
-  std::string link{};                   ///< udp://, tcp:// or serial:// URL (backend parses it)
-  std::uint8_t system_id = 1;           ///< 1..255
-  std::string profile = "px4";          ///< one of profile_names()
-  std::vector<std::string> messages{};  ///< non-empty iff profile is "custom"; message_names()
-  double rate_hz = 50.0;                ///< 0 < rate ≤ 500
-  std::string signing_key{};            ///< "" or 64 hex digits
-  bool paused = false;                  ///< start paused
-};
-
-/// PATCH /api/vehicles/NAME: only the keys present change.
-struct VehiclePatch {
-  std::string name{};               ///< from the URL
-  std::optional<double> rate_hz{};  ///< 0 < rate ≤ 500
-  std::optional<std::vector<std::string>>
-      messages{};  ///< message_names(), no duplicates, may be []
-  std::optional<bool> paused{};
-};
-
 struct AddVehicle {
-  VehicleSpec spec;
+  std::string name{};  ///< the "name" key when it is a string (Location)
+  /// Every [[vehicle]] key given, plus the API's defaults for the two keys a file must give
+  /// (system_id 1, profile "px4") when absent.
+  std::vector<config::VehicleKey> keys{};
+  bool paused = false;  ///< start paused
 };
 struct RemoveVehicle {
   std::string name{};
 };
+/// PATCH /api/vehicles/NAME: only the keys present change.
 struct UpdateVehicle {
-  VehiclePatch patch;
+  std::string name{};                      ///< from the URL
+  std::vector<config::VehicleKey> keys{};  ///< rate_hz and/or messages (config::update_vehicle)
+  std::optional<bool> paused{};
 };
 /// One change the dashboard asks the daemon to make.
 using VehicleChange = std::variant<AddVehicle, RemoveVehicle, UpdateVehicle>;
 
-/// Parses and validates a POST body (JSON text of any length; the server caps it at 64 KiB).
-ApiResult<VehicleSpec> parse_vehicle_spec(std::string_view json_text);
-/// Parses and validates a PATCH body for the vehicle `name` (taken from the URL). An empty
-/// object is refused: a PATCH must change something.
-ApiResult<VehiclePatch> parse_vehicle_patch(std::string_view json_text, std::string name);
-/// Validates a vehicle name as it appears in a URL or a spec (404 is the caller's business).
-[[nodiscard]] bool is_valid_vehicle_name(std::string_view name);
+/// Parses a POST body (JSON text of any length; the server caps it at 64 KiB).
+ApiResult<AddVehicle> parse_vehicle_spec(std::string_view json_text);
+/// Parses a PATCH body for the vehicle `name` (taken from the URL). An empty object is refused:
+/// a PATCH must change something.
+ApiResult<UpdateVehicle> parse_vehicle_patch(std::string_view json_text, std::string name);
+
+/// The answer to a change the configuration refused (config::add_vehicle / update_vehicle): 422,
+/// "key: message", and the key as the field (the API's keys are the [[vehicle]] keys).
+[[nodiscard]] ApiError refusal(const config::ConfigError& error);
 
 }  // namespace mocaplink::web

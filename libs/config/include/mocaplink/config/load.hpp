@@ -73,4 +73,14 @@ struct VehicleKey {
 ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys,
                          std::string_view origin);
 
+/// Changes the running vehicle `name` (the dashboard's PATCH /api/vehicles/NAME), with the checks
+/// and warnings a file gets for the same keys (e.g. ArduPilot above 50 Hz). Only the keys a running
+/// vehicle can change are allowed: `rate_hz` (replaced in the returned Config) and `messages`,
+/// which here is the live set of pose messages, for any profile and possibly empty: checked like
+/// the [[vehicle]] key (spelling, duplicates) and for the [origin] GPS-type messages need, but
+/// held by the Bridge like a pause, not written into the Config (whose `messages` stays the
+/// configured list of a custom profile). Errors and warnings are located as for add_vehicle.
+ConfigResult update_vehicle(const Config& base, std::string_view name,
+                            const std::vector<VehicleKey>& keys, std::string_view origin);
+
 }  // namespace mocaplink::config

@@ -68,7 +68,8 @@ inline constexpr std::size_t kMaxBodyNameLength = 256;
 /// 1..kMaxBodyNameLength bytes without control characters (U+0000..U+001F, U+007F).
 [[nodiscard]] bool is_valid_body_name(std::string_view body);
 
-/// One vehicle (the core's view of a config [[vehicle]]; the app maps config → this).
+/// One vehicle (the core's view of a config [[vehicle]]; apps/mocaplink make_vehicle_spec maps a
+/// validated config::Vehicle to this, docs/architecture-vehicles.md).
 struct VehicleSpec {
   std::string name;  ///< unique, for events and the dashboard
   std::string body;  ///< rigid-body name in the mocap frames
@@ -100,7 +101,9 @@ struct BridgeConfig {
 
 /// Why make() refused a config (the config library normally catches these first).
 struct BridgeConfigError {
-  std::string field;  ///< "vehicles[1].rate_hz", "origin", ...
+  /// "vehicle[2].rate_hz" (vehicles numbered from 1 by slot, as the configuration numbers its
+  /// [[vehicle]] tables), "origin", ...
+  std::string field;
   std::string message;
 };
 
@@ -192,9 +195,9 @@ class Bridge {
   bool raise_signing_timestamp(std::size_t vehicle, std::uint64_t timestamp_10us);
 
   /// Adds a vehicle, checked as make() checks config.vehicles (the error's field reads
-  /// "vehicles[SLOT]..."; a name in use is refused with field "vehicles[SLOT].name"). Returns its
-  /// slot. It starts like a configured one: heartbeats from the next on_tick, poses from the next
-  /// frame in which its body has an estimate (a body no other vehicle follows is tracked from
+  /// "vehicle[SLOT + 1]..."; a name in use is refused with field "vehicle[SLOT + 1].name"). Returns
+  /// its slot. It starts like a configured one: heartbeats from the next on_tick, poses from the
+  /// next frame in which its body has an estimate (a body no other vehicle follows is tracked from
   /// then on).
   [[nodiscard]] std::variant<std::size_t, BridgeConfigError> add_vehicle(const VehicleSpec& spec);
   /// Removes the vehicle in `slot`: nothing more is sent to it or accepted from it. False when the
@@ -204,6 +207,9 @@ class Bridge {
   [[nodiscard]] std::size_t next_slot() const;
   /// The slot of the live vehicle named `name`.
   [[nodiscard]] std::optional<std::size_t> find_vehicle(std::string_view name) const;
+  /// The live vehicle in `slot` as it was added (nullptr for an empty or out-of-range slot). Its
+  /// rate and messages are the ones it started with; the Sender's, in snapshot(), are live.
+  [[nodiscard]] const VehicleSpec* vehicle(std::size_t slot) const;
 
   [[nodiscard]] BridgeSnapshot snapshot(HostTime now) const;
   /// Live vehicles.
