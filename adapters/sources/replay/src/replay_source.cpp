@@ -91,24 +91,13 @@ ReplaySource::~ReplaySource() {
 }
 
 void ReplaySource::start(FrameSink on_frame, StateSink on_state) {
-  thread_ = std::thread([this, frame_sink = std::move(on_frame), state_sink = std::move(on_state)] {
+  thread_.start([this, frame_sink = std::move(on_frame), state_sink = std::move(on_state)] {
     run(frame_sink, state_sink);
   });
 }
 
 void ReplaySource::stop() {
-  {
-    const std::lock_guard lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
-}
-
-template <typename TimePoint>
-bool ReplaySource::wait_until(TimePoint deadline) {
-  std::unique_lock lock(mutex_);
-  return wake_.wait_until(lock, deadline, [this] { return stopping_; });
+  thread_.stop();
 }
 
 void ReplaySource::run(const FrameSink& on_frame, const StateSink& on_state) {
@@ -138,7 +127,7 @@ void ReplaySource::run(const FrameSink& on_frame, const StateSink& on_state) {
       auto& frame = std::get<std::optional<core::MocapFrame>>(*step);
       if (!frame) continue;
       const core::Duration due = schedule.due(frame->capture_time);
-      if (wait_until(config_.speed > 0.0 ? start + due : start)) return;
+      if (thread_.wait_until(config_.speed > 0.0 ? start + due : start)) return;
       ++delivered;
       ++delivered_this_pass;
       counters_.frames.fetch_add(1, std::memory_order_relaxed);

@@ -16,19 +16,14 @@ SimSource::~SimSource() {
 }
 
 void SimSource::start(FrameSink on_frame, StateSink on_state) {
-  thread_ = std::thread(
+  thread_.start(
       [this, frame_sink = std::move(on_frame), state_sink = std::move(on_state)]() mutable {
         run(std::move(frame_sink), std::move(state_sink));
       });
 }
 
 void SimSource::stop() {
-  {
-    const std::lock_guard lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  if (thread_.joinable()) thread_.join();
+  thread_.stop();
 }
 
 void SimSource::run(FrameSink on_frame, StateSink on_state) {
@@ -44,10 +39,7 @@ void SimSource::run(FrameSink on_frame, StateSink on_state) {
   for (std::uint64_t n = 1; config.frames == 0 || n <= config.frames; ++n) {
     const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                  period * static_cast<double>(n - 1));
-    {
-      std::unique_lock lock(mutex_);
-      if (wake_.wait_until(lock, due, [this] { return stopping_; })) return;
-    }
+    if (thread_.wait_until(due)) return;
     if (world_.dropped(n)) continue;
     core::MocapFrame frame = world_.frame(n);
     counters_.frames.fetch_add(1, std::memory_order_relaxed);

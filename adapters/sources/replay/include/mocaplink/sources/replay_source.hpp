@@ -2,16 +2,14 @@
 // frame) and delivers its frames with the recorded timing scaled by speed.
 #pragma once
 
-#include <condition_variable>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <variant>
 
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/replay_options.hpp"
 #include "mocaplink/sources/source.hpp"
+#include "mocaplink/sources/source_thread.hpp"
 
 namespace mocaplink::sources {
 
@@ -38,17 +36,11 @@ class ReplaySource final : public Source {
  private:
   ReplaySource(ReplayOptions config, std::string url);
   void run(const FrameSink& on_frame, const StateSink& on_state);
-  /// Waits until `deadline` or stop(); true if stopping.
-  template <typename TimePoint>
-  bool wait_until(TimePoint deadline);
 
   ReplayOptions config_;
   std::string url_;
   SourceCounters counters_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false;  // guarded by mutex_
-  std::thread thread_;
+  SourceThread thread_;  // last: joined before the members its body uses are destroyed
 };
 
 /// replay:// for the source registry: parse_replay_options, then ReplaySource::open.

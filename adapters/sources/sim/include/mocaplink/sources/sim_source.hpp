@@ -1,14 +1,12 @@
 // `sim://` as a Source: a thread that emits SimWorld frames in real time at rate_hz.
 #pragma once
 
-#include <condition_variable>
-#include <mutex>
 #include <string>
-#include <thread>
 
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/sim_world.hpp"
 #include "mocaplink/sources/source.hpp"
+#include "mocaplink/sources/source_thread.hpp"
 
 namespace mocaplink::sources {
 
@@ -35,10 +33,7 @@ class SimSource final : public Source {
   SimWorld world_;
   std::string url_;
   SourceCounters counters_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stopping_ = false;  // guarded by mutex_
-  std::thread thread_;
+  SourceThread thread_;  // last: joined before the members its body uses are destroyed
 };
 
 /// sim:// for the source registry: parse_sim_options, then a SimSource.
