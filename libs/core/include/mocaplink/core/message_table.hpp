@@ -3,9 +3,9 @@
 // the largest frame (bandwidth estimates), the GPS / vision role (when it is sent, whether it needs
 // an origin, whether it makes a custom profile send SET_GPS_GLOBAL_ORIGIN) and its builder (what
 // the Sender calls). kMessageKindCount, to_string / parse_message_kind, the Sender's dispatch, the
-// frame sizes, the web API's name list and the dashboard test fake all read this table.
+// frame sizes, the dashboard's message list and the dashboard test fake all read this table.
 //
-// Adding an output message (docs/architecture-messages.md): its MAVLink definition
+// Adding an output message (docs/architecture.md, "Add an output message"): its MAVLink definition
 // (libs/mavlink/definitions/messages.json → scripts/gen_mavlink.py), its builder
 // (message_builders.hpp/.cpp), an enumerator in MessageKind (profile.hpp) and its row here.
 // Thread-safety: constant data and pure functions.

@@ -1,4 +1,4 @@
-// How a mocap source joins the binary (docs/architecture-sources.md): its folder
+// How a mocap source joins the binary (docs/architecture.md, "Add a mocap source"): its folder
 // adapters/sources/<name>/ defines `SourceDescriptor <name>_source_descriptor()` and calls
 // mocaplink_add_source(<name> ...) in its CMakeLists.txt; the registry (adapters/sources/registry)
 // is generated from those calls. Everything a command needs to know about a source is here.
