@@ -68,8 +68,9 @@ inline constexpr std::size_t kMaxBodyNameLength = 256;
 /// 1..kMaxBodyNameLength bytes without control characters (U+0000..U+001F, U+007F).
 [[nodiscard]] bool is_valid_body_name(std::string_view body);
 
-/// One vehicle (the core's view of a config [[vehicle]]; apps/mocaplink make_vehicle_spec maps a
-/// validated config::Vehicle to this, docs/architecture-vehicles.md).
+/// One vehicle: the one description of a vehicle. config::Vehicle holds it (with the vehicle's
+/// link) once the config rules passed; the daemon sets signing_link_id from the slot it takes
+/// (docs/architecture-vehicles.md).
 struct VehicleSpec {
   std::string name;  ///< unique, for events and the dashboard
   std::string body;  ///< rigid-body name in the mocap frames
