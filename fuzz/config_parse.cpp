@@ -33,14 +33,14 @@ void check_config(const Config& c) {
   }
   for (std::size_t i = 0; i < c.vehicles.size(); ++i) {
     const auto& v = c.vehicles[i];
-    require(!v.name.empty() && v.name.size() <= 64 && !v.body.empty());
-    require(v.system_id >= 1 && v.component_id >= 2);
-    require(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::core::kMaxSenderRateHz);
-    require(mocaplink::core::are_perpendicular(v.body_forward, v.body_up));
-    require((v.profile == mocaplink::core::Profile::custom) == !v.messages.empty());
+    require(!v.spec.name.empty() && v.spec.name.size() <= 64 && !v.spec.body.empty());
+    require(v.spec.system_id >= 1 && v.spec.component_id >= 2);
+    require(v.spec.rate_hz > 0.0 && v.spec.rate_hz <= mocaplink::core::kMaxSenderRateHz);
+    require(mocaplink::core::are_perpendicular(v.spec.body_axes.forward(), v.spec.body_axes.up()));
+    require((v.spec.profile == mocaplink::core::Profile::custom) == !v.spec.messages.empty());
     for (std::size_t j = 0; j < i; ++j) {
-      require(c.vehicles[j].name != v.name);
-      require(!(c.vehicles[j].link == v.link && c.vehicles[j].system_id == v.system_id));
+      require(c.vehicles[j].spec.name != v.spec.name);
+      require(!(c.vehicles[j].link == v.link && c.vehicles[j].spec.system_id == v.spec.system_id));
     }
   }
   if (!mocaplink::config::is_loopback(c.http.listen.host)) require(c.http.token.size() >= 16);

@@ -60,9 +60,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check_refusal(added, add.value().keys);
     if (added.ok()) {
       const config::Vehicle& v = added.config->vehicles.back();
-      if (v.name != add.value().name || v.body.empty() || v.system_id == 0 ||
-          !(v.rate_hz > 0.0 && v.rate_hz <= mocaplink::core::kMaxSenderRateHz) ||
-          (v.profile == mocaplink::core::Profile::custom) == v.messages.empty()) {
+      if (v.spec.name != add.value().name || v.spec.body.empty() || v.spec.system_id == 0 ||
+          !(v.spec.rate_hz > 0.0 && v.spec.rate_hz <= mocaplink::core::kMaxSenderRateHz) ||
+          (v.spec.profile == mocaplink::core::Profile::custom) == v.spec.messages.empty()) {
         std::abort();
       }
     }
@@ -77,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto updated = config::update_vehicle(base, "demo", u.keys, "PATCH /api/vehicles/demo");
     check_refusal(updated, u.keys);
     if (updated.ok()) {
-      const double rate = updated.config->vehicles.front().rate_hz;
+      const double rate = updated.config->vehicles.front().spec.rate_hz;
       if (!(rate > 0.0 && rate <= mocaplink::core::kMaxSenderRateHz)) std::abort();
     }
   }

@@ -43,10 +43,11 @@ void print_summary(const config::Config& cfg) {
   std::printf("ok: %zu vehicle%s, source %s\n", n, n == 1 ? "" : "s",
               cfg.mocap.source.text.c_str());
   for (const auto& v : cfg.vehicles) {
-    std::printf("  %s: body %s, %s, system_id %u, profile %s, %g Hz%s%s\n", v.name.c_str(),
-                v.body.c_str(), config::to_string(v.link).c_str(),
-                static_cast<unsigned>(v.system_id), std::string(core::to_string(v.profile)).c_str(),
-                v.rate_hz, v.signing_key ? ", signed" : "", v.enabled ? "" : ", disabled");
+    std::printf("  %s: body %s, %s, system_id %u, profile %s, %g Hz%s%s\n", v.spec.name.c_str(),
+                v.spec.body.c_str(), config::to_string(v.link).c_str(),
+                static_cast<unsigned>(v.spec.system_id),
+                std::string(core::to_string(v.spec.profile)).c_str(), v.spec.rate_hz,
+                v.spec.signing_key ? ", signed" : "", v.spec.enabled ? "" : ", disabled");
   }
   std::printf("  dashboard: http://%s%s\n", config::to_string(cfg.http.listen).c_str(),
               cfg.http.token.empty() ? "" : " (token required)");

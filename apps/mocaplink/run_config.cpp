@@ -73,41 +73,10 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
     return std::nullopt;
   }
   out.world = *world;
-  if (cfg.origin) {
-    out.origin = core::GeodeticPosition{cfg.origin->latitude_deg, cfg.origin->longitude_deg,
-                                        cfg.origin->altitude_m};
-  }
+  out.origin = cfg.origin;
   out.tracking = cfg.tracking;
-  for (std::size_t i = 0; i < cfg.vehicles.size(); ++i) {
-    auto spec = make_vehicle_spec(cfg.vehicles[i], i, error);
-    if (!spec) return std::nullopt;
-    out.vehicles.push_back(std::move(*spec));
-  }
+  for (const config::Vehicle& vehicle : cfg.vehicles) out.vehicles.push_back(vehicle.spec);
   return out;
-}
-
-std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& v, std::size_t slot,
-                                                   std::string& error) {
-  const auto axes = core::BodyAxisMapping::make(v.body_forward, v.body_up);
-  if (!axes) {
-    error = "vehicle " + v.name + ": " + axes.error().field + ": " + axes.error().message;
-    return std::nullopt;
-  }
-  core::VehicleSpec spec;
-  spec.name = v.name;
-  spec.body = v.body;
-  spec.system_id = v.system_id;
-  spec.component_id = v.component_id;
-  spec.profile = v.profile;
-  spec.messages = v.messages;
-  spec.rate_hz = v.rate_hz;
-  spec.signing_key = v.signing_key;
-  // One physical channel per vehicle (mavlink-wire.md §7.3): link ids 1, 2, ... by slot
-  // (wrapping after 255 is harmless: each vehicle is its own link).
-  spec.signing_link_id = static_cast<std::uint8_t>((slot % 255) + 1);
-  spec.body_axes = *axes;
-  spec.enabled = v.enabled;
-  return spec;
 }
 
 }  // namespace mocaplink::app

@@ -36,10 +36,4 @@ struct RunOptions {
 [[nodiscard]] std::optional<core::BridgeConfig> make_bridge_config(const config::Config& config,
                                                                    std::string& error);
 
-/// The core's view of one vehicle in vehicle slot `slot` (its signing link id is slot + 1, so each
-/// vehicle signs as its own channel). Errors as for make_bridge_config.
-[[nodiscard]] std::optional<core::VehicleSpec> make_vehicle_spec(const config::Vehicle& vehicle,
-                                                                 std::size_t slot,
-                                                                 std::string& error);
-
 }  // namespace mocaplink::app

@@ -144,9 +144,9 @@ void Daemon::restore_signing() {
 void Daemon::restore_signing(std::size_t slot, const config::Vehicle& vehicle) {
   // Every vehicle continues above its persisted timestamp (mavlink-wire.md §7.3): the core signs
   // at max(wall clock, last + 1), and the stored value becomes that vehicle's last.
-  if (!vehicle.signing_key) return;
+  if (!vehicle.spec.signing_key) return;
   std::string problem;
-  const auto stored = store_.load(vehicle.name, &problem);
+  const auto stored = store_.load(vehicle.spec.name, &problem);
   if (!problem.empty()) spdlog::warn("signing: {}", problem);
   if (!stored) return;
   (void)bridge_.raise_signing_timestamp(slot, *stored);
@@ -155,7 +155,7 @@ void Daemon::restore_signing(std::size_t slot, const config::Vehicle& vehicle) {
     spdlog::warn(
         "signing: vehicle {}: the stored signing timestamp is {:.3f} s ahead of the wall clock "
         "(clock stepped back?); signing continues from it",
-        vehicle.name, static_cast<double>(*stored - now) / 1e5);
+        vehicle.spec.name, static_cast<double>(*stored - now) / 1e5);
   }
 }
 
@@ -202,10 +202,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   for (const auto& w : checked.warnings) spdlog::warn("dashboard: {}", config::to_string(w));
   const config::Vehicle vehicle = checked.config->vehicles.back();
   const std::size_t slot = bridge_.next_slot();
-  std::string error;
-  auto spec = make_vehicle_spec(vehicle, slot, error);
-  if (!spec) return web::ApiError{422, error, ""};
-  auto added = bridge_.add_vehicle(*spec);
+  auto added = bridge_.add_vehicle(vehicle.spec);
   if (const auto* e = std::get_if<core::BridgeConfigError>(&added)) {
     const auto dot = e->field.rfind('.');
     return web::ApiError{422, e->field + ": " + e->message,
@@ -222,12 +219,12 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   restore_signing(slot, vehicle);
   if (recorder_) {
     std::string problem;
-    if (!recorder_->add_vehicle(slot, vehicle.name, &problem)) {
-      spdlog::warn("recording: vehicle {} is not recorded: {}", vehicle.name, problem);
+    if (!recorder_->add_vehicle(slot, vehicle.spec.name, &problem)) {
+      spdlog::warn("recording: vehicle {} is not recorded: {}", vehicle.spec.name, problem);
     }
   }
   config_ = std::move(*checked.config);
-  spdlog::info("dashboard: vehicle {} added{}", vehicle.name, paused ? " (paused)" : "");
+  spdlog::info("dashboard: vehicle {} added{}", vehicle.spec.name, paused ? " (paused)" : "");
   summary_.describe_vehicle(vehicle, *vehicles_[slot].link);
   return std::nullopt;
 }
@@ -251,7 +248,7 @@ std::optional<web::ApiError> Daemon::remove_vehicle(const std::string& name) {
   if (recorder_) recorder_->remove_vehicle(*slot);
   vehicles_[*slot] = VehicleLink{};
   while (!vehicles_.empty() && !vehicles_.back().link) vehicles_.pop_back();
-  std::erase_if(config_.vehicles, [&](const config::Vehicle& c) { return c.name == name; });
+  std::erase_if(config_.vehicles, [&](const config::Vehicle& c) { return c.spec.name == name; });
   spdlog::info("dashboard: vehicle {} removed", name);
   return std::nullopt;
 }
@@ -272,7 +269,7 @@ std::optional<web::ApiError> Daemon::update_vehicle(const web::UpdateVehicle& up
     for (const auto& key : update.keys) {
       if (key.key == "rate_hz") {
         for (const auto& v : checked.config->vehicles) {
-          if (v.name == update.name) rate = v.rate_hz;
+          if (v.spec.name == update.name) rate = v.spec.rate_hz;
         }
       } else if (key.key == "messages") {
         messages.emplace();  // spelled right: update_vehicle checked every name
@@ -494,7 +491,7 @@ int run_daemon(const DaemonSettings& settings, const sources::SourceRegistry& so
   std::unique_ptr<Recorder> recorder;
   if (settings.record_dir) {
     std::vector<std::string> names;
-    for (const auto& v : settings.config.vehicles) names.push_back(v.name);
+    for (const auto& v : settings.config.vehicles) names.push_back(v.spec.name);
     recorder =
         Recorder::create(*settings.record_dir, settings.config.mocap.source.text, names, &error);
     if (!recorder) {

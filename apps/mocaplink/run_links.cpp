@@ -6,10 +6,10 @@ namespace mocaplink::app {
 
 VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& vehicle) {
   io::LinkOptions options;
-  options.name = vehicle.name;
-  if (vehicle.signing_key) options.verify_key = mavlink::SigningKey(*vehicle.signing_key);
+  options.name = vehicle.spec.name;
+  if (vehicle.spec.signing_key) options.verify_key = mavlink::SigningKey(*vehicle.spec.signing_key);
   VehicleLink out;
-  out.signing = vehicle.signing_key.has_value();
+  out.signing = vehicle.spec.signing_key.has_value();
   out.link = io::make_link(loop, vehicle.link, std::move(options));
   return out;
 }

@@ -1,7 +1,8 @@
 // One io::Link per configured vehicle (DESIGN.md "Link URLs"), plus what the daemon tracks per
 // link: whether it signs, and the last signing timestamp it sent (persisted, io/signing_store.hpp).
 // What the vehicle is (name, body, profile, ...) is not repeated here: the Bridge holds it by the
-// same slot, and the daemon's Config holds the configuration (docs/architecture-vehicles.md).
+// same slot, and the daemon's Config holds the configuration (docs/architecture.md, "A vehicle's
+// description").
 #pragma once
 
 #include <cstdint>

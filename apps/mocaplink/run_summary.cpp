@@ -39,8 +39,9 @@ Summary::Summary(const config::Config& config, std::chrono::milliseconds period)
 
 void Summary::describe_vehicle(const config::Vehicle& v, const io::Link& link) const {
   spdlog::info("vehicle {}: body {} -> {} as system {} component {}, profile {}, {:g} Hz{}{}",
-               v.name, v.body, link.url(), v.system_id, v.component_id, core::to_string(v.profile),
-               v.rate_hz, v.signing_key ? ", signed" : "", v.enabled ? "" : ", disabled");
+               v.spec.name, v.spec.body, link.url(), v.spec.system_id, v.spec.component_id,
+               core::to_string(v.spec.profile), v.spec.rate_hz,
+               v.spec.signing_key ? ", signed" : "", v.spec.enabled ? "" : ", disabled");
 }
 
 void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {

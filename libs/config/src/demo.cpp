@@ -6,13 +6,13 @@ Config demo_config() {
   Config config;
   config.mocap.source = SourceUrl{"sim://", "sim"};
   // The original ViconMAVLink's default origin (Urbana, IL), kept so demo logs compare directly.
-  config.origin = Origin{40.1156786, -88.2243507, 222.196};
+  config.origin = core::GeodeticPosition{40.1156786, -88.2243507, 222.196};
   Vehicle demo;
-  demo.name = "demo";
-  demo.body = "Body1";
+  demo.spec.name = "demo";
+  demo.spec.body = "Body1";
   demo.link = parse_link_url("udp://127.0.0.1:14550").value();
-  demo.system_id = 1;
-  demo.profile = core::Profile::px4;
+  demo.spec.system_id = 1;
+  demo.spec.profile = core::Profile::px4;
   config.vehicles.push_back(demo);
   return config;
 }

@@ -93,7 +93,8 @@ MocapSettings finalize_mocap(const ConfigDraft& d, Diagnostics& diagnostics) {
   return mocap;
 }
 
-std::optional<Origin> finalize_origin(const ConfigDraft& d, Diagnostics& diagnostics) {
+std::optional<core::GeodeticPosition> finalize_origin(const ConfigDraft& d,
+                                                      Diagnostics& diagnostics) {
   if (!d.origin_header) return std::nullopt;
   const bool lat = require(d.latitude_deg, d.mistyped, "latitude_deg", *d.origin_header,
                            "origin.latitude_deg", diagnostics);
@@ -102,7 +103,7 @@ std::optional<Origin> finalize_origin(const ConfigDraft& d, Diagnostics& diagnos
   const bool alt = require(d.altitude_m, d.mistyped, "altitude_m", *d.origin_header,
                            "origin.altitude_m", diagnostics);
   if (!lat || !lon || !alt) return std::nullopt;
-  return Origin{*d.latitude_deg.value, *d.longitude_deg.value, *d.altitude_m.value};
+  return core::GeodeticPosition{*d.latitude_deg.value, *d.longitude_deg.value, *d.altitude_m.value};
 }
 
 std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft& d,
@@ -114,7 +115,8 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   ok = require(v.link, v.mistyped, "link", v.header, key("link"), diagnostics) && ok;
   ok = require(v.system_id, v.mistyped, "system_id", v.header, key("system_id"), diagnostics) && ok;
   ok = require(v.profile, v.mistyped, "profile", v.header, key("profile"), diagnostics) && ok;
-  Vehicle out;
+  Vehicle vehicle;
+  core::VehicleSpec& out = vehicle.spec;
   out.profile = value_or(v.profile, core::Profile::px4);
   if (v.profile.value) {
     const bool custom = out.profile == core::Profile::custom;
@@ -143,20 +145,25 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
     diagnostics.error(where, by_profile ? v.profile.key : v.messages.key, kGpsNeedsOrigin);
     ok = false;
   }
-  out.body_forward = value_or(v.body_forward, mocap.body_forward);
-  out.body_up = value_or(v.body_up, mocap.body_up);
+  const core::SignedAxis body_forward = value_or(v.body_forward, mocap.body_forward);
+  const core::SignedAxis body_up = value_or(v.body_up, mocap.body_up);
   if (v.body_forward.present || v.body_up.present) {
     check_perpendicular(
-        axis_use(v.body_forward, out.body_forward, "body_forward", v.header, key("body_forward")),
-        axis_use(v.body_up, out.body_up, "body_up", v.header, key("body_up")), diagnostics);
+        axis_use(v.body_forward, body_forward, "body_forward", v.header, key("body_forward")),
+        axis_use(v.body_up, body_up, "body_up", v.header, key("body_up")), diagnostics);
   }
   if (!ok) return std::nullopt;
+  // A parallel pair was reported just above (or for [mocap]); the config is refused then anyway.
+  if (const auto axes = core::BodyAxisMapping::make(body_forward, body_up)) out.body_axes = *axes;
   out.name = *v.name.value;
   out.body = *v.body.value;
-  out.link = *v.link.value;
+  vehicle.link = *v.link.value;
   out.system_id = *v.system_id.value;
-  out.component_id = value_or(v.component_id, kDefaultComponentId);
-  out.rate_hz = value_or(v.rate_hz, kDefaultRateHz);
+  // Keys not given keep the core's defaults (component 197, the vision component of
+  // protocols/autopilots.md §9; 50 Hz).
+  const core::VehicleSpec defaults;
+  out.component_id = value_or(v.component_id, defaults.component_id);
+  out.rate_hz = value_or(v.rate_hz, defaults.rate_hz);
   out.signing_key = value_or(v.signing_key, std::optional<std::array<std::uint8_t, 32>>{});
   out.enabled = value_or(v.enabled, true);
   if (out.system_id == 255) {
@@ -168,15 +175,15 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
     diagnostics.warning(v.rate_hz.where, v.rate_hz.key,
                         "ArduPilot's external-navigation input is meant for at most 50 Hz");
   }
-  if (out.link.kind == LinkKind::serial) {
+  if (vehicle.link.kind == LinkKind::serial) {
     // The one bandwidth rule (core::serial_bandwidth_warning): `check`, `run` and a dashboard
     // POST all report it from here.
     const auto warning =
         core::serial_bandwidth_warning(out.profile, core::messages_for(out.profile, out.messages),
-                                       out.rate_hz, out.signing_key.has_value(), out.link.baud);
+                                       out.rate_hz, out.signing_key.has_value(), vehicle.link.baud);
     if (warning) diagnostics.warning(v.link.where, v.link.key, *warning);
   }
-  return out;
+  return vehicle;
 }
 
 /// Unique names; unique system ids per link; a warning for links shared between vehicles.

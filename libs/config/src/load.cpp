@@ -54,13 +54,13 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin) {
     d.altitude_m = given(config.origin->altitude_m, where, "origin.altitude_m");
   }
   for (std::size_t i = 0; i < config.vehicles.size(); ++i) {
-    const Vehicle& v = config.vehicles[i];
+    const core::VehicleSpec& v = config.vehicles[i].spec;
     VehicleDraft vd;
     vd.header = where;
     vd.prefix = "vehicle[" + std::to_string(i + 1) + "].";
     vd.name = given(v.name, where, vd.prefix + "name");
     vd.body = given(v.body, where, vd.prefix + "body");
-    vd.link = given(v.link, where, vd.prefix + "link");
+    vd.link = given(config.vehicles[i].link, where, vd.prefix + "link");
     vd.system_id = given(v.system_id, where, vd.prefix + "system_id");
     vd.component_id = given(v.component_id, where, vd.prefix + "component_id");
     vd.profile = given(v.profile, where, vd.prefix + "profile");
@@ -68,8 +68,8 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin) {
       vd.messages = given(v.messages, where, vd.prefix + "messages");
     vd.rate_hz = given(v.rate_hz, where, vd.prefix + "rate_hz");
     vd.signing_key = given(v.signing_key, where, vd.prefix + "signing_key");
-    vd.body_forward = given(v.body_forward, where, vd.prefix + "body_forward");
-    vd.body_up = given(v.body_up, where, vd.prefix + "body_up");
+    vd.body_forward = given(v.body_axes.forward(), where, vd.prefix + "body_forward");
+    vd.body_up = given(v.body_axes.up(), where, vd.prefix + "body_up");
     vd.enabled = given(v.enabled, where, vd.prefix + "enabled");
     d.vehicles.push_back(std::move(vd));
   }

@@ -116,8 +116,12 @@ AxisMappingResult<WorldAxisMapping> WorldAxisMapping::make(SignedAxis up, const 
   return WorldAxisMapping(r_ned_world);
 }
 
-BodyAxisMapping::BodyAxisMapping(const Eigen::Matrix3d& r_body_frd)
-    : r_body_frd_(r_body_frd), q_body_frd_(canonical_quaternion(r_body_frd)) {}
+BodyAxisMapping::BodyAxisMapping(SignedAxis forward, SignedAxis up,
+                                 const Eigen::Matrix3d& r_body_frd)
+    : forward_(forward),
+      up_(up),
+      r_body_frd_(r_body_frd),
+      q_body_frd_(canonical_quaternion(r_body_frd)) {}
 
 AxisMappingResult<BodyAxisMapping> BodyAxisMapping::parse(std::string_view forward,
                                                           std::string_view up) {
@@ -141,7 +145,7 @@ AxisMappingResult<BodyAxisMapping> BodyAxisMapping::make(SignedAxis forward, Sig
   r_body_frd.col(0) = f_b;
   r_body_frd.col(1) = r_b;
   r_body_frd.col(2) = d_b;
-  return BodyAxisMapping(r_body_frd);
+  return BodyAxisMapping(forward, up, r_body_frd);
 }
 
 AxisMappingResult<AxisMapping> AxisMapping::parse(std::string_view up, std::string_view north,

@@ -134,7 +134,9 @@ void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
   sc.messages = messages_for(spec.profile, spec.messages);
   sc.rate_hz = spec.rate_hz;
   sc.signing_key = spec.signing_key;
-  sc.signing_link_id = spec.signing_link_id;
+  // One physical channel per vehicle (mavlink-wire.md §7.3): link ids 1, 2, ... by slot
+  // (wrapping after 255 is harmless: each vehicle is its own link).
+  sc.signing_link_id = static_cast<std::uint8_t>((slot % 255) + 1);
   const bool origin = config_.origin.has_value() && sends_origin(spec.profile, sc.messages);
   VehicleStateConfig vc;
   vc.system_id = spec.system_id;

@@ -37,24 +37,24 @@ rate_hz = 20
 
 VehicleView make_vehicle(const config::Vehicle& vehicle, bool paused) {
   VehicleView v;
-  v.name = vehicle.name;
-  v.body = vehicle.body;
+  v.name = vehicle.spec.name;
+  v.body = vehicle.spec.body;
   v.link = config::to_string(vehicle.link);
-  v.system_id = vehicle.system_id;
-  v.profile = std::string(core::to_string(vehicle.profile));
-  v.rate_hz = vehicle.rate_hz;
+  v.system_id = vehicle.spec.system_id;
+  v.profile = std::string(core::to_string(vehicle.spec.profile));
+  v.rate_hz = vehicle.spec.rate_hz;
   v.paused = paused;
   // What a profile sends and whether it sets the origin come from the core, as in the daemon
   // (the fake has an [origin] configured).
-  const core::MessageSet messages = core::messages_for(vehicle.profile, vehicle.messages);
+  const core::MessageSet messages = core::messages_for(vehicle.spec.profile, vehicle.spec.messages);
   for (const core::MessageKind kind : core::message_kinds()) {
     if (messages.contains(kind)) v.messages.emplace_back(core::to_string(kind));
   }
   for (const auto name : core::message_kind_names()) v.available_messages.emplace_back(name);
-  v.origin = core::sends_origin(vehicle.profile, messages) ? OriginState::sending
-                                                           : OriginState::not_needed;
+  v.origin = core::sends_origin(vehicle.spec.profile, messages) ? OriginState::sending
+                                                                : OriginState::not_needed;
   v.timesync.state =
-      vehicle.profile == core::Profile::px4 ? TimesyncState::waiting : TimesyncState::off;
+      vehicle.spec.profile == core::Profile::px4 ? TimesyncState::waiting : TimesyncState::off;
   return v;
 }
 
@@ -163,7 +163,7 @@ std::optional<ApiError> FakeBackend::apply(const VehicleChange& change) {
   };
   auto find_config = [this](const std::string& name) -> const config::Vehicle& {
     return *std::find_if(config_.vehicles.begin(), config_.vehicles.end(),
-                         [&](const config::Vehicle& v) { return v.name == name; });
+                         [&](const config::Vehicle& v) { return v.spec.name == name; });
   };
   std::optional<ApiError> refused;
   std::visit(
@@ -188,7 +188,7 @@ std::optional<ApiError> FakeBackend::apply(const VehicleChange& change) {
             return;
           }
           vehicles_.erase(it);
-          std::erase_if(config_.vehicles, [&](const auto& v) { return v.name == c.name; });
+          std::erase_if(config_.vehicles, [&](const auto& v) { return v.spec.name == c.name; });
         } else {
           auto it = find(c.name);
           if (it == vehicles_.end()) {
@@ -203,7 +203,7 @@ std::optional<ApiError> FakeBackend::apply(const VehicleChange& change) {
           config_ = std::move(*updated.config);
           accrue(*it);  // counters up to now at the old rate
           for (const auto& key : c.keys) {
-            if (key.key == "rate_hz") it->view.rate_hz = find_config(c.name).rate_hz;
+            if (key.key == "rate_hz") it->view.rate_hz = find_config(c.name).spec.rate_hz;
             if (key.key == "messages")
               it->view.messages = std::get<std::vector<std::string>>(key.value);
           }

@@ -37,17 +37,17 @@ TEST(AddVehicle, AppendsAResolvedVehicle) {
   const auto result = add_vehicle(base, quad2(), kOrigin);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   ASSERT_EQ(result.config->vehicles.size(), 2U);
-  EXPECT_EQ(result.config->vehicles[0].name, "demo");
+  EXPECT_EQ(result.config->vehicles[0].spec.name, "demo");
   const Vehicle& v = result.config->vehicles[1];
-  EXPECT_EQ(v.name, "quad2");
-  EXPECT_EQ(v.body, "Quad2");
+  EXPECT_EQ(v.spec.name, "quad2");
+  EXPECT_EQ(v.spec.body, "Quad2");
   EXPECT_EQ(to_string(v.link), "udp://127.0.0.1:14560");
-  EXPECT_EQ(v.system_id, 2);
-  EXPECT_EQ(v.component_id, kDefaultComponentId);
-  EXPECT_EQ(v.profile, core::Profile::ardupilot);
-  EXPECT_EQ(v.rate_hz, 30.0);  // an integer where a number is expected
-  EXPECT_EQ(v.body_forward, core::axis::pos_y);
-  EXPECT_TRUE(v.enabled);
+  EXPECT_EQ(v.spec.system_id, 2);
+  EXPECT_EQ(v.spec.component_id, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY
+  EXPECT_EQ(v.spec.profile, core::Profile::ardupilot);
+  EXPECT_EQ(v.spec.rate_hz, 30.0);  // an integer where a number is expected
+  EXPECT_EQ(v.spec.body_axes.forward(), core::axis::pos_y);
+  EXPECT_TRUE(v.spec.enabled);
   EXPECT_TRUE(result.warnings.empty());
 }
 
@@ -127,8 +127,8 @@ TEST(UpdateVehicle, ChangesTheRateWithTheWarningsAFileGets) {
       update_vehicle(with_quad2(), "quad2", {{"rate_hz", std::int64_t{60}}}, kPatch);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   ASSERT_EQ(result.config->vehicles.size(), 2U);
-  EXPECT_EQ(result.config->vehicles[1].rate_hz, 60.0);
-  EXPECT_EQ(result.config->vehicles[0].rate_hz, demo_config().vehicles[0].rate_hz);
+  EXPECT_EQ(result.config->vehicles[1].spec.rate_hz, 60.0);
+  EXPECT_EQ(result.config->vehicles[0].spec.rate_hz, demo_config().vehicles[0].spec.rate_hz);
   // The same warning a [[vehicle]] table with profile = "ardupilot", rate_hz = 60 gets.
   EXPECT_THAT(warning_lines(result),
               ElementsAre("PATCH /api/vehicles/quad2: rate_hz: ArduPilot's external-navigation "
@@ -189,8 +189,8 @@ TEST(UpdateVehicle, MessagesAreTheLiveSetForAnyProfile) {
   for (const auto& list : {std::vector<std::string>{}, std::vector<std::string>{"hil_gps"}}) {
     const auto result = update_vehicle(base, "quad2", {{"messages", list}}, kPatch);
     ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
-    EXPECT_EQ(result.config->vehicles[1].profile, core::Profile::ardupilot);
-    EXPECT_TRUE(result.config->vehicles[1].messages.empty());
+    EXPECT_EQ(result.config->vehicles[1].spec.profile, core::Profile::ardupilot);
+    EXPECT_TRUE(result.config->vehicles[1].spec.messages.empty());
   }
 }
 
@@ -203,7 +203,7 @@ TEST(UpdateVehicle, LaterChangesAreCheckedAgainstThePatchedState) {
   third[2].value = std::string("udp://127.0.0.1:14570");
   const auto added = add_vehicle(*patched.config, third, kOrigin);
   ASSERT_TRUE(added.ok()) << testing::PrintToString(error_lines(added));
-  EXPECT_EQ(added.config->vehicles[1].rate_hz, 60.0);
+  EXPECT_EQ(added.config->vehicles[1].spec.rate_hz, 60.0);
   EXPECT_TRUE(added.warnings.empty() ||
               added.warnings[0].message.find("quad2") == std::string::npos);
   // ... and an add that clashes with the patched vehicle is refused naming it.
@@ -216,7 +216,7 @@ TEST(UpdateVehicle, LaterChangesAreCheckedAgainstThePatchedState) {
   const auto again =
       update_vehicle(*patched.config, "quad2", {{"messages", std::vector<std::string>{}}}, kPatch);
   ASSERT_TRUE(again.ok());
-  EXPECT_EQ(again.config->vehicles[1].rate_hz, 60.0);
+  EXPECT_EQ(again.config->vehicles[1].spec.rate_hz, 60.0);
   EXPECT_TRUE(again.warnings.empty());  // the rate was not given again: no repeated warning
 }
 

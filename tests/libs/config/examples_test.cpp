@@ -28,12 +28,12 @@ TEST(Examples, LabWithThreeVehicles) {
   EXPECT_EQ(c.mocap.source.text, "vicon://192.168.1.3?mode=push");
   ASSERT_TRUE(c.origin.has_value());
   ASSERT_EQ(c.vehicles.size(), 3u);
-  EXPECT_EQ(c.vehicles[0].profile, core::Profile::px4);
-  EXPECT_EQ(c.vehicles[1].profile, core::Profile::ardupilot);
+  EXPECT_EQ(c.vehicles[0].spec.profile, core::Profile::px4);
+  EXPECT_EQ(c.vehicles[1].spec.profile, core::Profile::ardupilot);
   EXPECT_EQ(c.vehicles[1].link.kind, LinkKind::serial);
-  EXPECT_TRUE(c.vehicles[1].signing_key.has_value());
-  EXPECT_EQ(c.vehicles[2].profile, core::Profile::ardupilot_gps);
-  EXPECT_EQ(c.vehicles[2].rate_hz, 10.0);
+  EXPECT_TRUE(c.vehicles[1].spec.signing_key.has_value());
+  EXPECT_EQ(c.vehicles[2].spec.profile, core::Profile::ardupilot_gps);
+  EXPECT_EQ(c.vehicles[2].spec.rate_hz, 10.0);
   EXPECT_FALSE(is_loopback(c.http.listen.host));
   EXPECT_FALSE(c.http.token.empty());
 }
@@ -46,9 +46,9 @@ TEST(Examples, SinglePx4Quad) {
   EXPECT_EQ(c.mocap.source.scheme, "vicon");
   EXPECT_EQ(c.mocap.up, core::axis::pos_z);
   ASSERT_EQ(c.vehicles.size(), 1u);
-  EXPECT_EQ(c.vehicles[0].profile, core::Profile::px4);
-  EXPECT_EQ(c.vehicles[0].body_up, core::axis::pos_z);
-  EXPECT_EQ(c.vehicles[0].rate_hz, 50.0);
+  EXPECT_EQ(c.vehicles[0].spec.profile, core::Profile::px4);
+  EXPECT_EQ(c.vehicles[0].spec.body_axes.up(), core::axis::pos_z);
+  EXPECT_EQ(c.vehicles[0].spec.rate_hz, 50.0);
 }
 
 }  // namespace

@@ -21,14 +21,14 @@ TEST(DemoConfig, MatchesTheDesign) {
   EXPECT_EQ(c.mocap.up, core::axis::pos_z);
   ASSERT_EQ(c.vehicles.size(), 1u);
   const Vehicle& v = c.vehicles[0];
-  EXPECT_EQ(v.name, "demo");
-  EXPECT_EQ(v.body, "Body1");
+  EXPECT_EQ(v.spec.name, "demo");
+  EXPECT_EQ(v.spec.body, "Body1");
   EXPECT_EQ(to_string(v.link), "udp://127.0.0.1:14550");
-  EXPECT_EQ(v.profile, core::Profile::px4);
-  EXPECT_EQ(v.system_id, 1);
-  EXPECT_EQ(v.component_id, 197);
-  EXPECT_EQ(v.rate_hz, 50.0);
-  EXPECT_TRUE(v.enabled);
+  EXPECT_EQ(v.spec.profile, core::Profile::px4);
+  EXPECT_EQ(v.spec.system_id, 1);
+  EXPECT_EQ(v.spec.component_id, 197);
+  EXPECT_EQ(v.spec.rate_hz, 50.0);
+  EXPECT_TRUE(v.spec.enabled);
   EXPECT_EQ(to_string(c.http.listen), "127.0.0.1:8080");
   ASSERT_TRUE(c.origin.has_value());
   EXPECT_EQ(c.origin->latitude_deg, 40.1156786);
@@ -50,14 +50,14 @@ TEST(Overrides, DesignExampleAddsAVehicle) {
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   ASSERT_EQ(result.config->vehicles.size(), 2u);
   const Vehicle& v = result.config->vehicles[1];
-  EXPECT_EQ(v.name, "quad1");
-  EXPECT_EQ(v.body, "Quad1");
+  EXPECT_EQ(v.spec.name, "quad1");
+  EXPECT_EQ(v.spec.body, "Quad1");
   EXPECT_EQ(v.link.kind, LinkKind::udp);
   EXPECT_EQ(v.link.address, (HostPort{"127.0.0.1", 14540}));
-  EXPECT_EQ(v.profile, core::Profile::px4);
-  EXPECT_EQ(v.system_id, 1);
-  EXPECT_EQ(v.rate_hz, 50.0);
-  EXPECT_EQ(v.component_id, 197);
+  EXPECT_EQ(v.spec.profile, core::Profile::px4);
+  EXPECT_EQ(v.spec.system_id, 1);
+  EXPECT_EQ(v.spec.rate_hz, 50.0);
+  EXPECT_EQ(v.spec.component_id, 197);
 }
 
 TEST(Overrides, EveryKeyFromTheCommandLine) {
@@ -70,19 +70,19 @@ TEST(Overrides, EveryKeyFromTheCommandLine) {
   const auto result = apply_overrides(demo_config(), o);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   const Vehicle& v = result.config->vehicles.at(1);
-  EXPECT_EQ(v.body, "Body 2");
+  EXPECT_EQ(v.spec.body, "Body 2");
   EXPECT_EQ(v.link.device, "/dev/ttyACM0");
   EXPECT_EQ(v.link.baud, 115200u);
-  EXPECT_EQ(v.system_id, 7);
-  EXPECT_EQ(v.component_id, 191);
-  EXPECT_EQ(v.profile, core::Profile::custom);
-  EXPECT_THAT(v.messages,
+  EXPECT_EQ(v.spec.system_id, 7);
+  EXPECT_EQ(v.spec.component_id, 191);
+  EXPECT_EQ(v.spec.profile, core::Profile::custom);
+  EXPECT_THAT(v.spec.messages,
               testing::ElementsAre(core::MessageKind::odometry, core::MessageKind::hil_gps));
-  EXPECT_EQ(v.rate_hz, 12.5);
-  ASSERT_TRUE(v.signing_key.has_value());
-  EXPECT_EQ((*v.signing_key)[0], 0xAA);
-  EXPECT_EQ(v.body_forward, core::axis::neg_y);
-  EXPECT_FALSE(v.enabled);
+  EXPECT_EQ(v.spec.rate_hz, 12.5);
+  ASSERT_TRUE(v.spec.signing_key.has_value());
+  EXPECT_EQ((*v.spec.signing_key)[0], 0xAA);
+  EXPECT_EQ(v.spec.body_axes.forward(), core::axis::neg_y);
+  EXPECT_FALSE(v.spec.enabled);
 }
 
 TEST(Overrides, ExistingNameOverridesOnlyTheGivenKeys) {
@@ -107,10 +107,10 @@ rate_hz = 50
   EXPECT_EQ(c.mocap.source.text, "sim://?bodies=2");
   EXPECT_EQ(c.http.listen.port, 0);
   ASSERT_EQ(c.vehicles.size(), 1u);
-  EXPECT_EQ(c.vehicles[0].rate_hz, 30.0);
-  EXPECT_EQ(c.vehicles[0].profile, core::Profile::ardupilot);
-  EXPECT_EQ(c.vehicles[0].body, "Quad1");  // kept from the file
-  EXPECT_EQ(c.vehicles[0].system_id, 1);
+  EXPECT_EQ(c.vehicles[0].spec.rate_hz, 30.0);
+  EXPECT_EQ(c.vehicles[0].spec.profile, core::Profile::ardupilot);
+  EXPECT_EQ(c.vehicles[0].spec.body, "Quad1");  // kept from the file
+  EXPECT_EQ(c.vehicles[0].spec.system_id, 1);
 }
 
 TEST(Overrides, SourceOnTheCommandLineCompletesAFileWithoutOne) {
@@ -191,7 +191,7 @@ TEST(Overrides, DemoVehicleCanBeRetargeted) {
   const auto result = apply_overrides(demo_config(), o);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   ASSERT_EQ(result.config->vehicles.size(), 1u);
-  EXPECT_EQ(result.config->vehicles[0].body, "Body2");
+  EXPECT_EQ(result.config->vehicles[0].spec.body, "Body2");
   EXPECT_EQ(to_string(result.config->vehicles[0].link), "udp://10.0.0.9:14540");
 }
 

@@ -86,33 +86,33 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
 
   ASSERT_EQ(c.vehicles.size(), 2u);
   const Vehicle& a = c.vehicles[0];
-  EXPECT_EQ(a.name, "alpha");
-  EXPECT_EQ(a.body, "Alpha Body");
+  EXPECT_EQ(a.spec.name, "alpha");
+  EXPECT_EQ(a.spec.body, "Alpha Body");
   EXPECT_EQ(a.link.kind, LinkKind::tcp);
   EXPECT_EQ(a.link.address, (HostPort{"sitl.local", 5760}));
-  EXPECT_EQ(a.system_id, 42);
-  EXPECT_EQ(a.component_id, 191);
-  EXPECT_EQ(a.profile, core::Profile::custom);
-  EXPECT_THAT(a.messages, testing::ElementsAre(core::MessageKind::vision_position_estimate,
-                                               core::MessageKind::vision_speed_estimate,
-                                               core::MessageKind::gps_input));
-  EXPECT_EQ(a.rate_hz, 30.5);
-  ASSERT_TRUE(a.signing_key.has_value());
-  for (std::size_t i = 0; i < 32; ++i) EXPECT_EQ((*a.signing_key)[i], i) << i;
-  EXPECT_EQ(a.body_forward, core::axis::neg_x);  // the vehicle's own
-  EXPECT_EQ(a.body_up, core::axis::pos_y);       // inherited from [mocap]
-  EXPECT_FALSE(a.enabled);
+  EXPECT_EQ(a.spec.system_id, 42);
+  EXPECT_EQ(a.spec.component_id, 191);
+  EXPECT_EQ(a.spec.profile, core::Profile::custom);
+  EXPECT_THAT(a.spec.messages, testing::ElementsAre(core::MessageKind::vision_position_estimate,
+                                                    core::MessageKind::vision_speed_estimate,
+                                                    core::MessageKind::gps_input));
+  EXPECT_EQ(a.spec.rate_hz, 30.5);
+  ASSERT_TRUE(a.spec.signing_key.has_value());
+  for (std::size_t i = 0; i < 32; ++i) EXPECT_EQ((*a.spec.signing_key)[i], i) << i;
+  EXPECT_EQ(a.spec.body_axes.forward(), core::axis::neg_x);  // the vehicle's own
+  EXPECT_EQ(a.spec.body_axes.up(), core::axis::pos_y);       // inherited from [mocap]
+  EXPECT_FALSE(a.spec.enabled);
 
   const Vehicle& b = c.vehicles[1];
-  EXPECT_EQ(b.name, "beta");
-  EXPECT_EQ(b.profile, core::Profile::classic);
-  EXPECT_EQ(b.component_id, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY
-  EXPECT_EQ(b.rate_hz, 50.0);
-  EXPECT_FALSE(b.signing_key.has_value());
-  EXPECT_TRUE(b.messages.empty());
-  EXPECT_EQ(b.body_forward, core::axis::pos_z);
-  EXPECT_EQ(b.body_up, core::axis::pos_y);
-  EXPECT_TRUE(b.enabled);
+  EXPECT_EQ(b.spec.name, "beta");
+  EXPECT_EQ(b.spec.profile, core::Profile::classic);
+  EXPECT_EQ(b.spec.component_id, 197);  // MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY
+  EXPECT_EQ(b.spec.rate_hz, 50.0);
+  EXPECT_FALSE(b.spec.signing_key.has_value());
+  EXPECT_TRUE(b.spec.messages.empty());
+  EXPECT_EQ(b.spec.body_axes.forward(), core::axis::pos_z);
+  EXPECT_EQ(b.spec.body_axes.up(), core::axis::pos_y);
+  EXPECT_TRUE(b.spec.enabled);
 
   EXPECT_EQ(c.tracking.loss_timeout_ms, 250.0);
   EXPECT_EQ(c.tracking.reset_after_ms, 1000.0);
@@ -160,9 +160,9 @@ profile = "px4"
   EXPECT_EQ(c.http.listen, (HostPort{"127.0.0.1", 8080}));
   EXPECT_EQ(c.http.token, "");
   ASSERT_EQ(c.vehicles.size(), 1u);
-  EXPECT_EQ(c.vehicles[0].rate_hz, 50.0);
-  EXPECT_EQ(c.vehicles[0].component_id, 197);
-  EXPECT_TRUE(c.vehicles[0].enabled);
+  EXPECT_EQ(c.vehicles[0].spec.rate_hz, 50.0);
+  EXPECT_EQ(c.vehicles[0].spec.component_id, 197);
+  EXPECT_TRUE(c.vehicles[0].spec.enabled);
 }
 
 TEST(ParseConfig, SameSystemIdOnDifferentLinksIsFine) {

@@ -123,6 +123,19 @@ TEST(BodyAxisMapping, NoseOnY) {
   EXPECT_EQ(BodyAxisMapping::parse("x", "+z").error().field, "body_forward");
 }
 
+TEST(BodyAxisMapping, KeepsTheAxesItWasMadeFrom) {
+  // The config writes a running vehicle's mapping back as its body_forward / body_up keys.
+  const auto b = BodyAxisMapping::parse("-y", "+x");
+  ASSERT_TRUE(b.has_value());
+  EXPECT_EQ(b->forward(), axis::neg_y);
+  EXPECT_EQ(b->up(), axis::pos_x);
+  // The identity is FRD itself: nose +x, top -z.
+  const BodyAxisMapping identity;
+  EXPECT_EQ(identity.forward(), axis::pos_x);
+  EXPECT_EQ(identity.up(), axis::neg_z);
+  EXPECT_NEAR((identity.r_body_frd() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-15);
+}
+
 TEST(AxisMapping, LevelViconBodyFacingNorthIsIdentity) {
   const auto m = AxisMapping::parse("+z", "+x");
   ASSERT_TRUE(m.has_value());

@@ -444,7 +444,6 @@ TEST(BridgeRuntimeVehicles, RemovedVehicleGetsNothingAndItsSlotIsReused) {
 TEST(BridgeSigning, RaisedTimestampIsTheFloorOfTheNextSignedFrame) {
   BridgeConfig c = two_vehicles();
   c.vehicles[0].signing_key = std::array<std::uint8_t, 32>{7};
-  c.vehicles[0].signing_link_id = 1;
   Bridge bridge = make_bridge(c);
   // 2023-11-14 22:13:20 UTC → (1'700'000'000 − 1'420'070'400) s in 10 µs units.
   bridge.set_wall_clock(HostTime{seconds(100)}, 1'700'000'000'000'000);

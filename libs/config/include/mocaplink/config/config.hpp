@@ -15,6 +15,8 @@
 #include "mocaplink/config/net_address.hpp"
 #include "mocaplink/config/profile.hpp"
 #include "mocaplink/config/source_url.hpp"
+#include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/profile.hpp"
 #include "mocaplink/core/sender.hpp"
 #include "mocaplink/core/tracker.hpp"
@@ -30,33 +32,19 @@ struct MocapSettings {
   core::SignedAxis body_up = core::axis::pos_z;  ///< default body axis up when level; ⟂ forward
 };
 
-/// [origin]: the geodetic position of the mocap frame's origin (WGS84; altitude above mean sea
-/// level, as HIL_GPS / GPS_INPUT / SET_GPS_GLOBAL_ORIGIN carry it).
-struct Origin {
-  double latitude_deg = 0.0;   ///< −90 ≤ lat ≤ 90
-  double longitude_deg = 0.0;  ///< −180 ≤ lon ≤ 180
-  double altitude_m = 0.0;     ///< −1000 ≤ alt ≤ 10000, m AMSL
-};
-
-/// MAV_COMP_ID_VISUAL_INERTIAL_ODOMETRY: the bridge looks like a vision component of each vehicle
-/// (protocols/autopilots.md §9), never like the autopilot (component 1).
-inline constexpr std::uint8_t kDefaultComponentId = 197;
-inline constexpr double kDefaultRateHz = 50.0;
-
-/// One [[vehicle]]: a mocap body whose poses go to one autopilot over one link.
+/// One [[vehicle]]: a mocap body whose poses go to one autopilot over one link. `spec` is the
+/// core's vehicle description, checked by the config rules:
+///   name           unique; 1..64 of [A-Za-z0-9_.-] (used in file names and URLs)
+///   body           rigid-body name in the mocap system (1..256 bytes, no control chars)
+///   system_id      1..255, unique per link; also the source sysid we send with
+///   component_id   2..255 (1 is the autopilot itself); default kDefaultComponentId
+///   messages       non-empty, no duplicates, iff profile == custom
+///   rate_hz        0 < rate ≤ core::kMaxSenderRateHz; pose messages per second
+///   body_axes      from the vehicle's body_forward / body_up, or [mocap]'s (forward() / up())
+///   enabled        false: configured but nothing is sent
 struct Vehicle {
-  std::string name;  ///< unique; 1..64 of [A-Za-z0-9_.-] (used in file names and URLs)
-  std::string body;  ///< rigid-body name in the mocap system (1..256 bytes, no control chars)
+  core::VehicleSpec spec;
   LinkUrl link;
-  std::uint8_t system_id = 1;  ///< 1..255, unique per link; also the source sysid we send with
-  std::uint8_t component_id = kDefaultComponentId;  ///< 2..255 (1 is the autopilot itself)
-  core::Profile profile = core::Profile::px4;
-  std::vector<core::MessageKind> messages;  ///< non-empty, no duplicates, iff profile == custom
-  double rate_hz = kDefaultRateHz;  ///< 0 < rate ≤ core::kMaxSenderRateHz; pose messages per second
-  std::optional<std::array<std::uint8_t, 32>> signing_key;  ///< MAVLink 2 signing secret
-  core::SignedAxis body_forward = core::axis::pos_x;        ///< the vehicle's override or [mocap]'s
-  core::SignedAxis body_up = core::axis::pos_z;             ///< resolved likewise; ⟂ body_forward
-  bool enabled = true;  ///< false: configured but nothing is sent
 };
 
 /// [http]: the dashboard / REST API.
@@ -67,8 +55,11 @@ struct HttpSettings {
 
 struct Config {
   MocapSettings mocap;
-  std::optional<Origin>
-      origin;  ///< required by px4-gps, ardupilot-gps, classic, hil_gps, gps_input
+  /// [origin]: the geodetic position of the mocap frame's origin (WGS84; altitude above mean sea
+  /// level, as HIL_GPS / GPS_INPUT / SET_GPS_GLOBAL_ORIGIN carry it; −90 ≤ lat ≤ 90,
+  /// −180 ≤ lon ≤ 180, −1000 ≤ alt ≤ 10000 m). Required by px4-gps, ardupilot-gps, classic,
+  /// hil_gps, gps_input.
+  std::optional<core::GeodeticPosition> origin;
   std::vector<Vehicle> vehicles;
   /// [tracking]: the tracker settings — the core's defaults with the keys the file sets (sanity
   /// bounds checked per key here, the tracker's cross-key rules by core::validate).

@@ -138,6 +138,11 @@ class BodyAxisMapping {
   /// From parsed values (the config's): the one place that checks forward ⟂ up.
   [[nodiscard]] static AxisMappingResult<BodyAxisMapping> make(SignedAxis forward, SignedAxis up);
 
+  /// The mocap body axis out of the nose and the one up out of the top that made this mapping
+  /// (identity: "+x" and "-z"), so a mapping can be written back as its config keys.
+  [[nodiscard]] SignedAxis forward() const { return forward_; }
+  [[nodiscard]] SignedAxis up() const { return up_; }
+
   /// Rotation FRD -> mocap body: v_body = R * v_frd. Columns are the F, R, D unit vectors in mocap
   /// body coordinates.
   [[nodiscard]] const Eigen::Matrix3d& r_body_frd() const { return r_body_frd_; }
@@ -145,7 +150,9 @@ class BodyAxisMapping {
   [[nodiscard]] const Eigen::Quaterniond& q_body_frd() const { return q_body_frd_; }
 
  private:
-  explicit BodyAxisMapping(const Eigen::Matrix3d& r_body_frd);
+  BodyAxisMapping(SignedAxis forward, SignedAxis up, const Eigen::Matrix3d& r_body_frd);
+  SignedAxis forward_ = axis::pos_x;
+  SignedAxis up_ = axis::neg_z;
   Eigen::Matrix3d r_body_frd_ = Eigen::Matrix3d::Identity();
   Eigen::Quaterniond q_body_frd_ = Eigen::Quaterniond::Identity();
 };

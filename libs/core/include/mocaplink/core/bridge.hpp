@@ -68,8 +68,9 @@ inline constexpr std::size_t kMaxBodyNameLength = 256;
 /// 1..kMaxBodyNameLength bytes without control characters (U+0000..U+001F, U+007F).
 [[nodiscard]] bool is_valid_body_name(std::string_view body);
 
-/// One vehicle (the core's view of a config [[vehicle]]; apps/mocaplink make_vehicle_spec maps a
-/// validated config::Vehicle to this, docs/architecture-vehicles.md).
+/// One vehicle: the one description of a vehicle. config::Vehicle holds it (with the vehicle's
+/// link) once the config rules passed (docs/architecture.md, "A vehicle's description"). Its
+/// frames are signed as link id slot + 1, one channel per vehicle.
 struct VehicleSpec {
   std::string name;  ///< unique, for events and the dashboard
   std::string body;  ///< rigid-body name in the mocap frames
@@ -79,7 +80,6 @@ struct VehicleSpec {
   std::vector<MessageKind> messages;  ///< profile custom only
   double rate_hz = 50.0;              ///< (0, kMaxSenderRateHz]
   std::optional<std::array<std::uint8_t, 32>> signing_key;
-  std::uint8_t signing_link_id = 0;
   BodyAxisMapping body_axes = default_body_axes();  ///< rigid-body axes → FRD
   bool enabled = true;                              ///< false: tracked and shown, nothing sent
 };
