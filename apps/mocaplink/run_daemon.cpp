@@ -261,6 +261,7 @@ std::optional<web::ApiError> Daemon::update_vehicle(const web::UpdateVehicle& up
   // file's (ranges, spellings, the origin GPS messages need), with its warnings.
   std::optional<double> rate;
   std::optional<core::MessageSet> messages;
+  std::optional<config::Config> next;  // the configuration once the change is applied
   if (!update.keys.empty()) {
     auto checked = config::update_vehicle(config_, update.name, update.keys,
                                           "PATCH /api/vehicles/" + update.name);
@@ -278,14 +279,17 @@ std::optional<web::ApiError> Daemon::update_vehicle(const web::UpdateVehicle& up
         }
       }
     }
-    config_ = std::move(*checked.config);
+    next = std::move(checked.config);
+  }
+  // Messages first: set_messages refuses nothing the configuration accepted, and a refused rate
+  // then leaves nothing applied.
+  if (messages && !bridge_.set_messages(*slot, *messages)) {
+    return web::ApiError{500, "internal error: the sender refused messages", "messages"};
   }
   if (rate && !bridge_.set_rate_hz(*slot, *rate)) {
     return web::ApiError{500, "internal error: the sender refused rate_hz", "rate_hz"};
   }
-  if (messages && !bridge_.set_messages(*slot, *messages)) {
-    return web::ApiError{500, "internal error: the sender refused messages", "messages"};
-  }
+  if (next) config_ = std::move(*next);
   if (update.paused) (void)bridge_.set_paused(*slot, *update.paused);
   spdlog::info("dashboard: vehicle {}:{}{}{}", update.name,
                rate ? fmt::format(" rate_hz={}", *rate) : "",

@@ -124,7 +124,16 @@ ConfigResult add_vehicle(const Config& base, const std::vector<VehicleKey>& keys
 
 ConfigResult update_vehicle(const Config& base, std::string_view name,
                             const std::vector<VehicleKey>& keys, std::string_view origin) {
-  detail::ConfigDraft draft = detail::draft_from_config(base, "configuration");
+  // What the change touches is attributed to it, so the warnings a file gives about those keys
+  // come back with it: ArduPilot above 50 Hz (rate_hz) and a serial link too slow for the new
+  // rate (reported at the link, so a rate change attributes the link too).
+  std::vector<std::string> changed;
+  for (const VehicleKey& key : keys) changed.push_back(key.key);
+  if (std::find(changed.begin(), changed.end(), "rate_hz") != changed.end()) {
+    changed.emplace_back("link");
+  }
+  detail::ConfigDraft draft =
+      detail::draft_from_config(base, "configuration", name, origin, changed);
   detail::Diagnostics diagnostics;
   const detail::Where where{std::string(origin)};
   const auto target =

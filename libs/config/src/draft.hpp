@@ -154,8 +154,14 @@ void apply_command_line(const std::optional<std::string>& source,
                         const std::vector<std::string>& vehicles, ConfigDraft& draft,
                         Diagnostics& diagnostics);
 
-/// A draft holding exactly `config`, every field attributed to `origin` (load.cpp).
-[[nodiscard]] ConfigDraft draft_from_config(const Config& config, std::string_view origin);
+/// A draft holding exactly `config`, every field attributed to `origin` (load.cpp) — except the
+/// `changed` keys of the vehicle named `vehicle` (when given), which are attributed to
+/// `vehicle_origin` under their bare names, as if written there: a change to a running vehicle
+/// then gets the warnings a file gives about what it changed, and no others again.
+[[nodiscard]] ConfigDraft draft_from_config(const Config& config, std::string_view origin,
+                                            std::string_view vehicle = {},
+                                            std::string_view vehicle_origin = {},
+                                            std::span<const std::string> changed = {});
 
 /// Required keys, defaults and cross-field rules; the Config when no error was found
 /// (finalize.cpp).

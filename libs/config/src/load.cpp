@@ -37,8 +37,11 @@ Field<T> given(T value, const Where& where, std::string key) {
 
 }  // namespace
 
-ConfigDraft draft_from_config(const Config& config, std::string_view origin) {
+ConfigDraft draft_from_config(const Config& config, std::string_view origin,
+                              std::string_view vehicle, std::string_view vehicle_origin,
+                              std::span<const std::string> changed) {
   const Where where{std::string(origin)};
+  const Where change{std::string(vehicle_origin)};
   ConfigDraft d;
   d.document = where;
   d.mocap_header = where;
@@ -55,22 +58,29 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin) {
   }
   for (std::size_t i = 0; i < config.vehicles.size(); ++i) {
     const core::VehicleSpec& v = config.vehicles[i].spec;
+    const bool is_changed = !vehicle.empty() && v.name == vehicle;
     VehicleDraft vd;
     vd.header = where;
     vd.prefix = "vehicle[" + std::to_string(i + 1) + "].";
-    vd.name = given(v.name, where, vd.prefix + "name");
-    vd.body = given(v.body, where, vd.prefix + "body");
-    vd.link = given(config.vehicles[i].link, where, vd.prefix + "link");
-    vd.system_id = given(v.system_id, where, vd.prefix + "system_id");
-    vd.component_id = given(v.component_id, where, vd.prefix + "component_id");
-    vd.profile = given(v.profile, where, vd.prefix + "profile");
-    if (v.profile == core::Profile::custom)
-      vd.messages = given(v.messages, where, vd.prefix + "messages");
-    vd.rate_hz = given(v.rate_hz, where, vd.prefix + "rate_hz");
-    vd.signing_key = given(v.signing_key, where, vd.prefix + "signing_key");
-    vd.body_forward = given(v.body_axes.forward(), where, vd.prefix + "body_forward");
-    vd.body_up = given(v.body_axes.up(), where, vd.prefix + "body_up");
-    vd.enabled = given(v.enabled, where, vd.prefix + "enabled");
+    // Where a key is attributed: the change for its changed keys (bare name), else the document.
+    const auto at = [&](const auto& value, const char* key) {
+      if (is_changed && std::find(changed.begin(), changed.end(), key) != changed.end()) {
+        return given(value, change, key);
+      }
+      return given(value, where, vd.prefix + key);
+    };
+    vd.name = at(v.name, "name");
+    vd.body = at(v.body, "body");
+    vd.link = at(config.vehicles[i].link, "link");
+    vd.system_id = at(v.system_id, "system_id");
+    vd.component_id = at(v.component_id, "component_id");
+    vd.profile = at(v.profile, "profile");
+    if (v.profile == core::Profile::custom) vd.messages = at(v.messages, "messages");
+    vd.rate_hz = at(v.rate_hz, "rate_hz");
+    vd.signing_key = at(v.signing_key, "signing_key");
+    vd.body_forward = at(v.body_axes.forward(), "body_forward");
+    vd.body_up = at(v.body_axes.up(), "body_up");
+    vd.enabled = at(v.enabled, "enabled");
     d.vehicles.push_back(std::move(vd));
   }
   d.tracking = config.tracking;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -28,7 +29,9 @@ inline std::string read_file(const std::string& path) {
 
 /// Runs the binary with `args` (shell-quoted by the caller) and waits for it to exit.
 inline ProcessResult run_mocaplink(const std::string& args) {
-  const std::string err_path = testing::TempDir() + "/station_cli_stderr.txt";
+  // One file per test process: ctest -j runs these tests' processes side by side.
+  const std::string err_path =
+      testing::TempDir() + "/station_cli_stderr_" + std::to_string(getpid()) + ".txt";
   const std::string command = std::string(MOCAPLINK_BINARY) + " " + args + " 2>" + err_path;
   ProcessResult run;
   FILE* pipe = popen(command.c_str(), "r");

@@ -151,6 +151,34 @@ rate_hz = 60
   EXPECT_TRUE(update_vehicle(with_quad2(), "quad2", {{"rate_hz", 40.0}}, kPatch).warnings.empty());
 }
 
+TEST(UpdateVehicle, ARateTooHighForASerialLinkGetsTheFilesBandwidthWarning) {
+  // 57600 baud carries 5760 bytes/s; px4's ODOMETRY (full frame up to 245 bytes) at 30 Hz fits,
+  // at 100 Hz it does not — the same warning a [[vehicle]] table with that rate gets.
+  const auto file = [](const char* rate) {
+    return parse_config(std::string(R"(
+[mocap]
+source = "sim://"
+[[vehicle]]
+name = "radio"
+body = "Body1"
+link = "serial:///dev/ttyUSB0?baud=57600"
+system_id = 1
+profile = "px4"
+rate_hz = )") + rate + "\n",
+                        "lab.toml");
+  };
+  const auto slow = file("20");
+  ASSERT_TRUE(slow.ok()) << testing::PrintToString(error_lines(slow));
+  ASSERT_TRUE(slow.warnings.empty()) << testing::PrintToString(warning_lines(slow));
+  const auto fast = file("100");
+  ASSERT_EQ(fast.warnings.size(), 1U) << testing::PrintToString(warning_lines(fast));
+  const auto patched = update_vehicle(*slow.config, "radio", {{"rate_hz", 100.0}}, kPatch);
+  ASSERT_TRUE(patched.ok()) << testing::PrintToString(error_lines(patched));
+  ASSERT_EQ(patched.warnings.size(), 1U) << testing::PrintToString(warning_lines(patched));
+  EXPECT_EQ(patched.warnings[0].file, kPatch);
+  EXPECT_EQ(patched.warnings[0].message, fast.warnings[0].message);
+}
+
 TEST(UpdateVehicle, RefusesWhatAFileWouldRefuseWithTheSameMessages) {
   const Config base = with_quad2();
   auto errors = [&](std::vector<VehicleKey> keys) {
