@@ -137,7 +137,7 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
     }
   }
   out.messages = value_or(v.messages, std::vector<core::MessageKind>{});
-  const bool gps = (v.profile.value && needs_origin(out.profile)) ||
+  const bool gps = (v.profile.value && core::messages_for(out.profile).needs_origin()) ||
                    core::MessageSet(out.messages).needs_origin();
   if (gps && !have_origin && !d.origin_header) {
     const bool by_profile = out.profile != core::Profile::custom;

@@ -4,8 +4,8 @@
 #include <array>
 #include <string>
 
+#include "mocaplink/config/url.hpp"
 #include "text_util.hpp"
-#include "url_util.hpp"
 
 namespace mocaplink::config {
 namespace {
@@ -31,8 +31,8 @@ bool is_broadcast_or_multicast(const std::string& host) {
   return first_octet >= 224 && first_octet <= 239;
 }
 
-Result parse_network(LinkKind kind, const detail::UrlParts& parts) {
-  if (auto error = detail::check_query_keys(parts, {}, std::string(to_string(kind)) + "://");
+Result parse_network(LinkKind kind, const UrlParts& parts) {
+  if (auto error = check_query_keys(parts, {}, std::string(to_string(kind)) + "://");
       !error.empty()) {
     return Result::failure(error);
   }
@@ -53,9 +53,9 @@ Result parse_network(LinkKind kind, const detail::UrlParts& parts) {
   return link;
 }
 
-Result parse_serial(const detail::UrlParts& parts) {
+Result parse_serial(const UrlParts& parts) {
   constexpr std::array<std::string_view, 1> kKeys = {"baud"};
-  if (auto error = detail::check_query_keys(parts, kKeys, "serial://"); !error.empty()) {
+  if (auto error = check_query_keys(parts, kKeys, "serial://"); !error.empty()) {
     return Result::failure(error);
   }
   const auto device = parts.body;
@@ -96,7 +96,7 @@ const char* to_string(LinkKind kind) {
 }
 
 ValueOrError<LinkUrl> parse_link_url(std::string_view text) {
-  auto parts = detail::split_url(text);
+  auto parts = split_url(text);
   if (!parts) {
     if (text.find("://") == std::string_view::npos) {
       return Result::failure("expected " + std::string(kForms) + ", got " + detail::quoted(text));

@@ -28,8 +28,4 @@ ValueOrError<core::MessageKind> parse_message_kind(std::string_view text) {
   return parse_name(text, core::parse_message_kind(text), core::message_kind_names(), "message");
 }
 
-bool needs_origin(core::Profile profile) {
-  return core::messages_for(profile).needs_origin();
-}
-
 }  // namespace mocaplink::config

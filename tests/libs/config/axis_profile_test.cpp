@@ -62,8 +62,6 @@ TEST(MessageKind, NamesAndOriginNeeds) {
   EXPECT_TRUE(core::needs_origin(core::MessageKind::hil_gps));
   EXPECT_TRUE(core::needs_origin(core::MessageKind::gps_input));
   EXPECT_FALSE(core::needs_origin(core::MessageKind::odometry));
-  EXPECT_TRUE(needs_origin(core::Profile::classic));
-  EXPECT_FALSE(needs_origin(core::Profile::ardupilot));
   EXPECT_EQ(parse_message_kind("HIL_GPS").error(),
             "unknown message \"HIL_GPS\"; did you mean \"hil_gps\"? (one of: odometry, "
             "vision_position_estimate, vision_speed_estimate, att_pos_mocap, hil_gps, gps_input, "

@@ -16,8 +16,4 @@ namespace mocaplink::config {
 /// Parses core::to_string's spellings of a message kind; the error names the closest one.
 [[nodiscard]] ValueOrError<core::MessageKind> parse_message_kind(std::string_view text);
 
-/// True for the profiles whose messages put a geodetic position on the wire and so need the
-/// [origin] table (px4-gps, ardupilot-gps, classic): core::messages_for(profile).needs_origin().
-[[nodiscard]] bool needs_origin(core::Profile profile);
-
 }  // namespace mocaplink::config
