@@ -1,6 +1,7 @@
-// `mocaplink serve --protocol P --from sim|replay:FILE [--listen ADDR] [--rate HZ]` (DESIGN.md
-// "Command line"): emulate a mocap server. P is any registered source with an emulator
-// (SourceDescriptor::make_emulator; today vicon); others exit 1 with "not supported yet".
+// `mocaplink serve --protocol P --from sim|replay:FILE [--listen ADDR] [--rate HZ] [--to HOST:PORT]
+// [--set KEY=VALUE]...` (DESIGN.md "Command line"): emulate a mocap server. P is any registered
+// source with an emulator (SourceDescriptor::make_emulator); others exit 1 with "not supported
+// yet".
 //
 // --from sim            the built-in simulator (Body1, Body2, Body3; sim:// defaults) at --rate
 // --from sim://?KEYS    the same with sim:// keys (bodies, noise_mm, seed, occlude, …); rate_hz
@@ -11,8 +12,13 @@
 //                       protocol's port (vicon: 801)
 // --rate HZ             frame rate of the sim and of StreamInfo (replay: used when a frame does
 //                       not say); default 100
+// --to HOST:PORT        where a protocol that sends datagrams unasked sends them (required for
+//                       those, refused by the others: nothing is sent that was not asked for)
+// --set KEY=VALUE       a setting of the protocol's emulator (docs/sources.md lists them per
+//                       protocol); repeatable, each key once
 // On start one line goes to stdout: "serving P on HOST:PORT from SOURCE at RATE Hz" (PORT is
-// the bound one, so --listen 127.0.0.1:0 works for scripts). Runs until SIGINT/SIGTERM (exit 0).
+// the bound one, so --listen 127.0.0.1:0 works for scripts; "to HOST:PORT" for a protocol that
+// sends to --to). Runs until SIGINT/SIGTERM (exit 0).
 // Exit 1: bad arguments; exit 2: cannot listen or cannot read the recording.
 #include <algorithm>
 #include <charconv>
@@ -22,6 +28,7 @@
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include <asio/io_context.hpp>
 
@@ -29,6 +36,7 @@
 #include "mocaplink/config/url.hpp"
 #include "mocaplink/io/signals.hpp"
 #include "mocaplink/sources/registry.hpp"
+#include "mocaplink/text/did_you_mean.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -38,6 +46,8 @@ struct ServeArgs {
   std::string from;
   std::optional<std::string> listen;
   double rate_hz = 100.0;
+  std::optional<std::string> to;
+  std::vector<std::string> settings;
 };
 
 // `--from sim` and `replay:FILE` are shorthands for sim:// and replay://FILE.
@@ -103,6 +113,56 @@ std::string join(const std::vector<std::string_view>& names) {
   return out;
 }
 
+// The protocols whose emulators send unasked (they take --to), for messages.
+std::string senders(const sources::SourceRegistry& sources) {
+  std::vector<std::string_view> out;
+  for (const auto scheme : sources.servable()) {
+    if (sources.find(scheme)->emulator_sends) out.push_back(scheme);
+  }
+  return out.empty() ? "none" : join(out);
+}
+
+// --to and --set into `options`; "" or the first problem, for stderr (exit 1).
+std::string read_emulator_args(const ServeArgs& args, const sources::SourceDescriptor& protocol,
+                               const sources::SourceRegistry& sources,
+                               sources::EmulatorOptions& options) {
+  const std::string name(protocol.scheme);
+  if (protocol.emulator_sends && !args.to) {
+    return "--to HOST:PORT is required: " + name + " sends its datagrams there";
+  }
+  if (!protocol.emulator_sends && args.to) {
+    return "--to is only for protocols that send unasked (" + senders(sources) + "); " + name +
+           " clients connect to --listen";
+  }
+  if (args.to) {
+    const auto to = parse_listen(*args.to, 0);
+    if (!to || to->second == 0 || args.to->find(':') == std::string::npos) {
+      return "bad --to '" + *args.to + "' (expected HOST:PORT)";
+    }
+    options.to_host = to->first;
+    options.to_port = to->second;
+  }
+  for (const auto& item : args.settings) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      return "bad --set '" + item + "' (expected KEY=VALUE)";
+    }
+    std::string key = item.substr(0, eq);
+    const auto& keys = protocol.emulator_option_keys;
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+      std::vector<std::string_view> names(keys.begin(), keys.end());
+      return "unknown --set key '" + key + "' for " + name + " (" +
+             (names.empty() ? std::string("it takes none") : "known: " + join(names)) + ")" +
+             text::did_you_mean(key, keys);
+    }
+    for (const auto& [seen, value] : options.settings) {
+      if (seen == key) return "--set " + key + " given twice";
+    }
+    options.settings.emplace_back(std::move(key), item.substr(eq + 1));
+  }
+  return {};
+}
+
 int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
   const sources::SourceDescriptor* protocol = sources.find(args.protocol);
   if (protocol == nullptr || !protocol->make_emulator) {
@@ -122,6 +182,22 @@ int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
     return 1;
   }
 
+  sources::EmulatorOptions emulator_options;
+  emulator_options.listen_host = listen->first;
+  emulator_options.port = listen->second;
+  emulator_options.rate_hz = args.rate_hz;
+  if (const auto err = read_emulator_args(args, *protocol, sources, emulator_options);
+      !err.empty()) {
+    std::fprintf(stderr, "mocaplink serve: %s\n", err.c_str());
+    return 1;
+  }
+  auto made = protocol->make_emulator(emulator_options);
+  if (const auto* err = std::get_if<std::string>(&made)) {
+    std::fprintf(stderr, "mocaplink serve: %s: %s\n", args.protocol.c_str(), err->c_str());
+    return 1;
+  }
+  const auto server = std::move(std::get<std::unique_ptr<sources::Emulator>>(made));
+
   const std::string url = with_rate(sources, from_url(args.from), args.rate_hz);
   if (const auto check = sources.check(url); !check.error.empty()) {
     std::fprintf(
@@ -139,8 +215,6 @@ int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
   // SIGINT/SIGTERM from here on stop the server cleanly (a signal during start-up waits for run).
   asio::io_context loop;
   io::StopSignals stop_signals(loop, [&loop](int, int) { loop.stop(); });
-  const auto server = protocol->make_emulator(
-      sources::EmulatorOptions{listen->first, listen->second, args.rate_hz});
   if (const auto err = server->start({})) {
     std::fprintf(stderr, "mocaplink serve: %s%s\n", err->c_str(),
                  listen->second < 1024 ? " (ports below 1024 need root; try --listen :8801)" : "");
@@ -152,9 +226,15 @@ int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
                   std::fprintf(stderr, "mocaplink serve: %s %s%s%s\n", scheme.c_str(), to_string(s),
                                detail.empty() ? "" : ": ", detail.c_str());
                 });
-  std::printf("serving %s on %s:%u from %s at %g Hz\n", args.protocol.c_str(),
-              listen->first.c_str(), static_cast<unsigned>(server->port()), args.from.c_str(),
-              args.rate_hz);
+  if (protocol->emulator_sends) {
+    std::printf("serving %s to %s:%u from %s at %g Hz\n", args.protocol.c_str(),
+                emulator_options.to_host.c_str(), static_cast<unsigned>(emulator_options.to_port),
+                args.from.c_str(), args.rate_hz);
+  } else {
+    std::printf("serving %s on %s:%u from %s at %g Hz\n", args.protocol.c_str(),
+                listen->first.c_str(), static_cast<unsigned>(server->port()), args.from.c_str(),
+                args.rate_hz);
+  }
   std::fflush(stdout);
 
   loop.run();  // until SIGINT/SIGTERM
@@ -178,6 +258,11 @@ void add_serve_commands(CLI::App& app, ExitCode& exit_code,
       "--listen", args->listen,
       "HOST:PORT, :PORT or HOST (default 0.0.0.0 and the protocol's port; vicon: 801)");
   serve->add_option("--rate", args->rate_hz, "Frame rate in Hz (default 100)");
+  serve->add_option(
+      "--to", args->to,
+      "HOST:PORT to send to, for protocols that send unasked (" + senders(sources) + ")");
+  serve->add_option("--set", args->settings,
+                    "KEY=VALUE setting of the protocol's emulator (repeatable; docs/sources.md)");
   serve->callback([args, &exit_code, &sources] { exit_code.value = run_serve(*args, sources); });
 }
 

@@ -49,7 +49,7 @@ TEST(SourceRegistry, OneClearMessagePerBadUrl) {
   EXPECT_EQ(error_of("sim://?bodys=3"),
             "unknown option \"bodys\" for sim://; did you mean \"bodies\"? (options: bodies, "
             "rate_hz, noise_mm, noise_deg, seed, drop, occlude, occlude_s, outliers, outlier_m, "
-            "frames)");
+            "frames, churn_s)");
   EXPECT_NE(error_of("sim://?rate_hz=0").find("rate_hz must be"), std::string::npos);
   EXPECT_NE(error_of("sim://host").find("takes no host"), std::string::npos);
   EXPECT_NE(error_of("replay:///nonexistent.csv").find("cannot open '/nonexistent.csv'"),

@@ -105,7 +105,7 @@ TEST(SourceUrl, EverySimAndReplayOptionTheSourcesTake) {
   EXPECT_EQ(error("sim://?occlud=0.1"),
             "unknown option \"occlud\" for sim://; did you mean \"occlude\"? (options: bodies, "
             "rate_hz, noise_mm, noise_deg, seed, drop, occlude, occlude_s, outliers, outlier_m, "
-            "frames)");
+            "frames, churn_s)");
 
   EXPECT_TRUE(replay("replay://f.csv?loop=1").loop);
   EXPECT_FALSE(replay("replay://f.csv").loop);

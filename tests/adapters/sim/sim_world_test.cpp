@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -190,6 +191,28 @@ TEST(SimOptions, GuardRefusesConfigsOutsideTheDocumentedRanges) {
   c = SimOptions{};
   c.drop = 1.0;
   EXPECT_NE(validate_sim_options(c).find("drop must be"), std::string::npos);
+}
+
+TEST(SimWorld, ChurnTakesTheLastBodyOutOfTheListInEveryOddSlot) {
+  SimOptions c = noiseless(3);
+  c.churn_s = 0.5;  // 100 frames per slot at 200 Hz; frame n is at t = (n - 1) / 200 s
+  const SimWorld world(c);
+  const auto names = [&world](std::uint64_t n) {
+    std::vector<std::string> out;
+    for (const auto& b : world.frame(n).bodies) out.push_back(b.name);
+    return out;
+  };
+  const std::vector<std::string> all{"Body1", "Body2", "Body3"};
+  const std::vector<std::string> two{"Body1", "Body2"};
+  EXPECT_EQ(names(1), all);    // t = 0
+  EXPECT_EQ(names(100), all);  // t = 0.495
+  EXPECT_EQ(names(101), two);  // t = 0.5: gone
+  EXPECT_EQ(names(200), two);
+  EXPECT_EQ(names(201), all);  // t = 1.0: back
+  EXPECT_EQ(names(301), two);
+  c.churn_s = 0.0;
+  const SimWorld steady(c);
+  EXPECT_EQ(steady.frame(101).bodies.size(), 3U);
 }
 
 }  // namespace

@@ -128,14 +128,23 @@ TEST(ViconServeCli, ServesSimBodiesToOurClient) {
 
 TEST(ViconServeCli, ArgumentErrorsExitOne) {
   const std::vector<std::vector<std::string>> cases = {
-      {"--protocol", "natnet", "--from", "sim"},
+      {"--protocol", "optitrack", "--from", "sim"},
       {"--protocol", "vicon", "--from", "camera"},
       {"--protocol", "vicon", "--from", "sim", "--listen", "127.0.0.1:99999"},
       {"--protocol", "vicon", "--from", "sim://?bodys=2"},
       {"--protocol", "vicon", "--from", "sim", "--rate", "0"},
+      {"--protocol", "vicon", "--from", "sim", "--to", "127.0.0.1:51001"},
+      {"--protocol", "vicon", "--from", "sim", "--set", "version=3"},
+      {"--protocol", "vicon", "--from", "sim", "--set", "version"},
   };
-  const std::vector<std::string> expected = {"not supported yet", "bad --from", "bad --listen",
-                                             "bodys", "--rate"};
+  const std::vector<std::string> expected = {"not supported yet",
+                                             "bad --from",
+                                             "bad --listen",
+                                             "bodys",
+                                             "--rate",
+                                             "--to is only for",
+                                             "unknown --set key 'version' for vicon",
+                                             "bad --set 'version'"};
   for (std::size_t i = 0; i < cases.size(); ++i) {
     std::vector<std::string> args = {MOCAPLINK_BINARY, "serve"};
     args.insert(args.end(), cases[i].begin(), cases[i].end());

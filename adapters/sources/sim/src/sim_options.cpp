@@ -14,7 +14,7 @@ struct Number {
   double high;
   bool low_inclusive;
 };
-constexpr std::array<Number, 7> kNumbers{{
+constexpr std::array<Number, 8> kNumbers{{
     {"rate_hz", &SimOptions::rate_hz, 0.0, 2000.0, false},
     {"noise_mm", &SimOptions::noise_mm, 0.0, 1000.0, true},
     {"noise_deg", &SimOptions::noise_deg, 0.0, 90.0, true},
@@ -22,6 +22,7 @@ constexpr std::array<Number, 7> kNumbers{{
     {"occlude_s", &SimOptions::occlude_s, 0.0, 60.0, false},
     {"outliers", &SimOptions::outliers, 0.0, 1.0, true},
     {"outlier_m", &SimOptions::outlier_m, 0.0, 100.0, false},
+    {"churn_s", &SimOptions::churn_s, 0.0, 3600.0, true},
 }};
 constexpr std::uint64_t kMaxCount = std::numeric_limits<std::int64_t>::max();
 

@@ -149,6 +149,11 @@ bool SimWorld::occluded(std::size_t index, std::uint64_t frame_number) const {
   return uniform(config_.seed, slot, index, Draw::occlude) < config_.occlude;
 }
 
+bool SimWorld::absent(std::size_t index, std::uint64_t frame_number) const {
+  if (config_.churn_s <= 0.0 || index + 1 != config_.bodies) return false;
+  return static_cast<std::uint64_t>(std::floor(time_s(frame_number) / config_.churn_s)) % 2 == 1;
+}
+
 core::MocapFrame SimWorld::frame(std::uint64_t frame_number) const {
   core::MocapFrame frame;
   frame.frame_number = frame_number;
@@ -158,6 +163,7 @@ core::MocapFrame SimWorld::frame(std::uint64_t frame_number) const {
   const std::uint64_t seed = config_.seed;
   frame.bodies.reserve(config_.bodies);
   for (std::size_t i = 0; i < config_.bodies; ++i) {
+    if (absent(i, frame_number)) continue;
     core::BodySample body;
     body.name = body_name(i);
     body.tracked = !occluded(i, frame_number);

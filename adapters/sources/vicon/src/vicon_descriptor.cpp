@@ -15,12 +15,12 @@ SourceDescriptor vicon_source_descriptor() {
         options.target = std::move(target);
         return std::make_unique<ViconSource>(std::move(options), std::move(text));
       });
-  d.make_emulator = [](const EmulatorOptions& options) -> std::unique_ptr<Emulator> {
+  d.make_emulator = [](const EmulatorOptions& options) -> EmulatorResult {
     ViconServerOptions server;
     server.listen_host = options.listen_host;
     server.port = options.port;
     server.rate_hz = options.rate_hz;
-    return std::make_unique<ViconServer>(server);
+    return std::unique_ptr<Emulator>(std::make_unique<ViconServer>(server));
   };
   d.serve_port = wire::vicon::kDefaultPort;
   return d;

@@ -25,11 +25,19 @@ namespace mocaplink::sources {
 /// A Source ready to start, or why it cannot be made (one line).
 using OpenResult = std::variant<std::unique_ptr<Source>, std::string>;
 
-/// Where `mocaplink serve` listens and at which frame rate it advertises/produces frames.
+/// Where `mocaplink serve` listens (or sends to) and at which frame rate it advertises/produces
+/// frames, plus the protocol's own settings (`--set KEY=VALUE`).
 struct EmulatorOptions {
   std::string listen_host = "0.0.0.0";
   std::uint16_t port = 0;  ///< 0 = any free port
   double rate_hz = 100.0;
+  /// `--to HOST:PORT`: where a protocol that pushes datagrams unasked sends them
+  /// (SourceDescriptor::emulator_sends); empty host for the others, which never get it.
+  std::string to_host;
+  std::uint16_t to_port = 0;
+  /// `--set KEY=VALUE` in command-line order; every key is in
+  /// SourceDescriptor::emulator_option_keys and given once (serve checked). Values unchecked.
+  std::vector<std::pair<std::string, std::string>> settings;
 };
 
 /// A server that speaks a mocap system's protocol to its clients (`mocaplink serve`).
@@ -55,6 +63,9 @@ class Emulator {
   [[nodiscard]] virtual std::string summary() const = 0;
 };
 
+/// An emulator ready to start, or why its settings are wrong (one line).
+using EmulatorResult = std::variant<std::unique_ptr<Emulator>, std::string>;
+
 /// One mocap source: its URL scheme and options, how to open it, and what else it offers.
 struct SourceDescriptor {
   std::string_view scheme;                        ///< "vicon" for vicon://
@@ -70,9 +81,15 @@ struct SourceDescriptor {
   std::function<std::vector<std::string>(const config::UrlParts& url,
                                          const config::SourceContext& context)>
       config_warnings;
-  /// Optional: the emulator behind `mocaplink serve --protocol <scheme>`.
-  std::function<std::unique_ptr<Emulator>(const EmulatorOptions& options)> make_emulator;
+  /// Optional: the emulator behind `mocaplink serve --protocol <scheme>`, or why `options` are
+  /// wrong (one line naming the setting, e.g. "version must be 3.0, 3.1, …, got 5.0"; exit 1).
+  std::function<EmulatorResult(const EmulatorOptions& options)> make_emulator;
   std::uint16_t serve_port = 0;  ///< serve's default --listen port (with make_emulator)
+  /// The `--set KEY=VALUE` keys its emulator accepts (with make_emulator).
+  std::span<const std::string_view> emulator_option_keys;
+  /// Its emulator sends datagrams to `--to HOST:PORT` unasked (vicon-udp); serve then requires
+  /// --to, since nothing is sent that the user did not ask for. Others refuse --to.
+  bool emulator_sends = false;
 };
 
 /// A descriptor from a source's typed options parser and opener: `parse` validates the URL into

@@ -62,6 +62,9 @@ class SimWorld {
   [[nodiscard]] bool dropped(std::uint64_t frame_number) const;
   /// Whether body `index` is occluded at frame `frame_number` under config().occlude.
   [[nodiscard]] bool occluded(std::size_t index, std::uint64_t frame_number) const;
+  /// Whether body `index` is absent from frame `frame_number` under config().churn_s (the last
+  /// body, in every odd slot of churn_s seconds).
+  [[nodiscard]] bool absent(std::size_t index, std::uint64_t frame_number) const;
 
   /// The frame as the mocap system reports it: truth + noise, with occluded bodies flagged
   /// untracked and outliers applied; every body is present, in index order. Ignores drops (ask
