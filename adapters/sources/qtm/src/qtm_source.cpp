@@ -205,7 +205,10 @@ class QtmSource::Session {
         minor_ = opts_.target.newest_minor;
         return command("Version " + minor_text(minor_));
       }
-      if (type == static_cast<std::uint32_t>(T::error)) return drop("server: " + text, false);
+      if (type == static_cast<std::uint32_t>(T::error)) {
+        ++owner_.qtm_counters_.server_errors;
+        return drop("server: " + text, false);
+      }
       return drop("not a QTM RT server (no welcome)", true);
     }
     switch (static_cast<T>(type)) {
