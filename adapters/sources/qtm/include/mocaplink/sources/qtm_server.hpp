@@ -31,7 +31,8 @@ struct QtmServerOptions {
   double rate_hz = 100.0;               ///< provider schedule and General <Frequency>
   wire::qtm::ServerSettings session;    ///< versions and components served
   std::size_t max_clients = 10;
-  std::size_t queue_frames = 32;  ///< per-client TCP frame queue; whole frames dropped when full
+  /// Per-client TCP frame queue (about a second at 200 Hz); whole frames dropped when full.
+  std::size_t queue_frames = 256;
 };
 
 struct QtmServerCounters {
