@@ -80,8 +80,8 @@ rate = 50
 
 TEST(CheckCommand, SourceNotBuiltInIsAnError) {
   // A source this binary lacks: `run` refuses it, and so does check, with the same message.
-  const auto path = write_temp("qtm.toml", R"([mocap]
-source = "qtm://qtm-pc"
+  const auto path = write_temp("optitrack.toml", R"([mocap]
+source = "optitrack://mocap-pc"
 [[vehicle]]
 name = "quad1"
 body = "Quad1"
@@ -93,10 +93,11 @@ profile = "px4"
   std::filesystem::remove(path);
   EXPECT_EQ(run.exit_code, 1) << run.stderr_text;
   EXPECT_EQ(run.stdout_text, "");
-  EXPECT_EQ(run.stderr_text, path +
-                                 ":2:10: mocap.source: unknown source scheme \"qtm\" (one of: "
-                                 "replay, sim, vicon)\n" +
-                                 path + ": 1 error\n");
+  EXPECT_EQ(run.stderr_text,
+            path +
+                ":2:10: mocap.source: unknown source scheme \"optitrack\" (one of: "
+                "qtm, replay, sim, vicon)\n" +
+                path + ": 1 error\n");
 }
 
 TEST(CheckCommand, SyntaxErrorExitsOne) {
