@@ -11,6 +11,7 @@
 #include <asio.hpp>
 
 #include "mocaplink/io/clock.hpp"
+#include "mocaplink/sources/reconnect.hpp"
 #include "mocaplink/wire/qtm_frame.hpp"
 #include "mocaplink/wire/qtm_parameters.hpp"
 
@@ -40,8 +41,8 @@ class QtmSource::Session {
       : owner_(owner),
         opts_(owner.options_),
         on_frame_(std::move(on_frame)),
-        on_state_(std::move(on_state)),
-        backoff_(opts_.backoff_initial) {}
+        report_(std::move(on_state)),
+        backoff_(opts_.backoff_initial, opts_.backoff_max) {}
 
   void run() {
     asio::post(io_, [this] { connect(); });
@@ -54,12 +55,6 @@ class QtmSource::Session {
  private:
   enum class Phase { welcome, version, ready };
 
-  void report(SourceState s, const std::string& detail) {
-    if (s == state_ && s != SourceState::disconnected) return;
-    state_ = s;
-    if (on_state_) on_state_(s, detail);
-  }
-
   std::string target_text() const {
     return opts_.target.host + ":" + std::to_string(opts_.target.port);
   }
@@ -67,7 +62,7 @@ class QtmSource::Session {
   void connect() {
     const auto gen = ++generation_;
     if (attempts_++ > 0) ++owner_.counters_.reconnects;
-    report(SourceState::connecting, target_text());
+    report_(SourceState::connecting, target_text());
     connect_timer_.expires_after(opts_.connect_timeout);
     connect_timer_.async_wait([this, gen](const asio::error_code& ec) {
       if (!ec && gen == generation_ && phase_ != Phase::ready) {
@@ -111,9 +106,8 @@ class QtmSource::Session {
     commands_.clear();
     writing_ = false;
     for (auto* t : {&connect_timer_, &silence_timer_, &parameters_timer_}) t->cancel();
-    report(SourceState::disconnected, reason);
-    retry_timer_.expires_after(backoff_);
-    backoff_ = std::min(backoff_ * 2, opts_.backoff_max);
+    report_(SourceState::disconnected, reason);
+    retry_timer_.expires_after(backoff_.next());
     retry_timer_.async_wait([this](const asio::error_code& ec) {
       if (!ec) connect();
     });
@@ -257,7 +251,7 @@ class QtmSource::Session {
   void version_set() {
     phase_ = Phase::ready;
     connect_timer_.cancel();
-    backoff_ = opts_.backoff_initial;
+    backoff_.reset();
     ++owner_.qtm_counters_.connections;
     std::string detail = "protocol " + minor_text(minor_) + ", " +
                          std::string(wq::to_string(opts_.target.component));
@@ -268,7 +262,7 @@ class QtmSource::Session {
       detail += " over TCP";
     }
     request_parameters();
-    report(SourceState::connected, detail);
+    report_(SourceState::connected, detail);
   }
 
   std::string open_udp() {
@@ -436,7 +430,7 @@ class QtmSource::Session {
   QtmSource& owner_;
   const QtmSourceOptions& opts_;
   FrameSink on_frame_;
-  StateSink on_state_;
+  StateReporter report_;
   asio::io_context io_;  // first: destroyed after the sockets and timers that use it
   tcp::resolver resolver_{io_};
   tcp::socket socket_{io_};
@@ -464,8 +458,7 @@ class QtmSource::Session {
   std::chrono::steady_clock::time_point last_packet_{};
   std::uint64_t generation_ = 0;
   std::uint64_t attempts_ = 0;
-  std::chrono::milliseconds backoff_;
-  SourceState state_ = SourceState::disconnected;
+  Backoff backoff_;
 };
 
 QtmSource::QtmSource(QtmSourceOptions options, std::string url)
@@ -478,25 +471,12 @@ QtmSource::~QtmSource() {
 void QtmSource::start(FrameSink on_frame, StateSink on_state) {
   if (started_) return;
   started_ = true;
-  session_ = std::make_unique<Session>(*this, std::move(on_frame), std::move(on_state));
-  thread_ = std::thread([this] { session_->run(); });
+  session_.make(*this, std::move(on_frame), std::move(on_state));
+  session_.run([](Session& session) { session.run(); });
 }
 
 void QtmSource::stop() {
-  if (!session_) return;
-  session_->stop();
-  if (thread_.joinable()) thread_.join();
-  session_.reset();
-}
-
-std::string QtmSource::last_error() const {
-  const std::lock_guard lock(error_mutex_);
-  return last_error_;
-}
-
-void QtmSource::set_last_error(std::string error) {
-  const std::lock_guard lock(error_mutex_);
-  last_error_ = std::move(error);
+  session_.stop();
 }
 
 }  // namespace mocaplink::sources

@@ -261,29 +261,15 @@ ViconServer::~ViconServer() {
 }
 
 std::optional<std::string> ViconServer::start(FrameProvider provider) {
-  if (impl_) return "already started";
-  if (!(options_.rate_hz > 0.0 && options_.rate_hz <= 10000.0)) {
-    return "rate must be in (0, 10000] Hz";
-  }
-  impl_ = std::make_unique<Impl>(options_, counters_);
-  if (auto err = impl_->listen()) {
-    impl_.reset();
-    return err;
-  }
-  port_ = impl_->bound_port();
-  thread_ = std::thread([this, p = std::move(provider)]() mutable { impl_->run(std::move(p)); });
-  return std::nullopt;
+  return start_emulator(impl_, port_, options_.rate_hz, std::move(provider), options_, counters_);
 }
 
 void ViconServer::publish(core::MocapFrame frame) {
-  if (impl_) impl_->publish(std::move(frame));
+  if (auto* impl = impl_.get()) impl->publish(std::move(frame));
 }
 
 void ViconServer::stop() {
-  if (!impl_) return;
-  impl_->stop();
-  if (thread_.joinable()) thread_.join();
-  impl_.reset();
+  impl_.stop();
 }
 
 std::string ViconServer::summary() const {

@@ -10,6 +10,7 @@
 #include <asio.hpp>
 
 #include "mocaplink/io/clock.hpp"
+#include "mocaplink/sources/reconnect.hpp"
 #include "mocaplink/wire/vicon_client_stream.hpp"
 #include "mocaplink/wire/vicon_mocap_frame.hpp"
 
@@ -35,8 +36,8 @@ class ViconSource::Session {
       : owner_(owner),
         opts_(owner.options_),
         on_frame_(std::move(on_frame)),
-        on_state_(std::move(on_state)),
-        backoff_(opts_.backoff_initial) {}
+        report_(std::move(on_state)),
+        backoff_(opts_.backoff_initial, opts_.backoff_max) {}
 
   void run() {
     asio::post(io_, [this] { connect(); });
@@ -47,16 +48,10 @@ class ViconSource::Session {
   void stop() { io_.stop(); }
 
  private:
-  void set_state(SourceState s, const std::string& detail) {
-    if (s == state_ && s != SourceState::disconnected) return;
-    state_ = s;
-    if (on_state_) on_state_(s, detail);
-  }
-
   void connect() {
     ++generation_;
     if (attempts_++ > 0) ++owner_.counters_.reconnects;
-    set_state(SourceState::connecting, opts_.target.host + ":" + std::to_string(opts_.target.port));
+    report_(SourceState::connecting, opts_.target.host + ":" + std::to_string(opts_.target.port));
     const auto gen = generation_;
     connect_timer_.expires_after(opts_.connect_timeout);
     connect_timer_.async_wait([this, gen](const asio::error_code& ec) {
@@ -93,9 +88,8 @@ class ViconSource::Session {
     connect_timer_.cancel();
     silence_timer_.cancel();
     pull_timer_.cancel();
-    set_state(SourceState::disconnected, reason);
-    retry_timer_.expires_after(backoff_);
-    backoff_ = std::min(backoff_ * 2, opts_.backoff_max);
+    report_(SourceState::disconnected, reason);
+    retry_timer_.expires_after(backoff_.next());
     retry_timer_.async_wait([this](const asio::error_code& ec) {
       if (!ec) connect();
     });
@@ -189,7 +183,7 @@ class ViconSource::Session {
     }
     greeted_ = true;
     connect_timer_.cancel();
-    backoff_ = opts_.backoff_initial;
+    backoff_.reset();
     ++owner_.vicon_counters_.connections;
     const vw::ObjectEnums request = vw::client_request(offered.value());
     send(packet_of(request));
@@ -209,7 +203,7 @@ class ViconSource::Session {
         pull_now();
         break;
     }
-    set_state(SourceState::connected, detail);
+    report_(SourceState::connected, detail);
     return true;
   }
 
@@ -289,7 +283,7 @@ class ViconSource::Session {
   ViconSource& owner_;
   const ViconSourceOptions& opts_;
   FrameSink on_frame_;
-  StateSink on_state_;
+  StateReporter report_;
   asio::io_context io_;  // first: destroyed after the sockets and timers that use it
   tcp::resolver resolver_{io_};
   tcp::socket socket_{io_};
@@ -305,11 +299,10 @@ class ViconSource::Session {
   bool greeted_ = false;
   std::uint64_t generation_ = 0;
   std::uint64_t attempts_ = 0;
-  std::chrono::milliseconds backoff_;
+  Backoff backoff_;
   std::optional<std::uint32_t> last_frame_id_;
   SteadyClock::duration period_ = kDefaultPeriod;
   SteadyClock::time_point last_pull_{};
-  SourceState state_ = SourceState::disconnected;
 };
 
 ViconSource::ViconSource(ViconSourceOptions options, std::string url)
@@ -322,25 +315,12 @@ ViconSource::~ViconSource() {
 void ViconSource::start(FrameSink on_frame, StateSink on_state) {
   if (started_) return;
   started_ = true;
-  session_ = std::make_unique<Session>(*this, std::move(on_frame), std::move(on_state));
-  thread_ = std::thread([this] { session_->run(); });
+  session_.make(*this, std::move(on_frame), std::move(on_state));
+  session_.run([](Session& session) { session.run(); });
 }
 
 void ViconSource::stop() {
-  if (!session_) return;
-  session_->stop();
-  if (thread_.joinable()) thread_.join();
-  session_.reset();
-}
-
-std::string ViconSource::last_error() const {
-  std::lock_guard lock(error_mutex_);
-  return last_error_;
-}
-
-void ViconSource::set_last_error(std::string error) {
-  std::lock_guard lock(error_mutex_);
-  last_error_ = std::move(error);
+  session_.stop();
 }
 
 }  // namespace mocaplink::sources

@@ -21,6 +21,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/wire/qtm_server_session.hpp"
 
 namespace mocaplink::sources {
@@ -64,8 +65,7 @@ class QtmServer final : public Emulator {
   class Impl;
   QtmServerOptions options_;
   QtmServerCounters counters_;
-  std::unique_ptr<Impl> impl_;
-  std::thread thread_;
+  LoopThread<Impl> impl_;
   std::uint16_t port_ = 0;
 };
 

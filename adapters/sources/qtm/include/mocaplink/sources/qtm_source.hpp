@@ -29,6 +29,7 @@
 #include <thread>
 
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/qtm_options.hpp"
 #include "mocaplink/sources/source.hpp"
 
@@ -74,21 +75,19 @@ class QtmSource final : public Source {
   [[nodiscard]] const SourceCounters& counters() const override { return counters_; }
   [[nodiscard]] const QtmCounters& qtm_counters() const { return qtm_counters_; }
   /// The most recent connection error, dropped-packet reason or warning ("" if none); any thread.
-  [[nodiscard]] std::string last_error() const;
+  [[nodiscard]] std::string last_error() const { return last_error_.get(); }
 
  private:
   class Session;  // Asio state, lives on the client thread (qtm_source.cpp)
   friend class Session;
-  void set_last_error(std::string error);
+  void set_last_error(std::string error) { last_error_.set(std::move(error)); }
 
   QtmSourceOptions options_;
   std::string url_;
   SourceCounters counters_;
   QtmCounters qtm_counters_;
-  mutable std::mutex error_mutex_;
-  std::string last_error_;  // guarded by error_mutex_
-  std::unique_ptr<Session> session_;
-  std::thread thread_;
+  LastError last_error_;
+  LoopThread<Session> session_;  // last: joined before the members the session uses go
   bool started_ = false;
 };
 

@@ -24,6 +24,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 
 namespace mocaplink::sources {
 
@@ -74,8 +75,7 @@ class ViconServer final : public Emulator {
   class Impl;  // Asio state (vicon_server.cpp)
   ViconServerOptions options_;
   ViconServerCounters counters_;
-  std::unique_ptr<Impl> impl_;
-  std::thread thread_;
+  LoopThread<Impl> impl_;
   std::uint16_t port_ = 0;
 };
 

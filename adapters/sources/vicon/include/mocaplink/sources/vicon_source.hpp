@@ -24,6 +24,7 @@
 #include <variant>
 
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/source.hpp"
 #include "mocaplink/sources/vicon_options.hpp"
 #include "mocaplink/wire/vicon_packet.hpp"
@@ -67,21 +68,19 @@ class ViconSource final : public Source {
   [[nodiscard]] const SourceCounters& counters() const override { return counters_; }
   [[nodiscard]] const ViconCounters& vicon_counters() const { return vicon_counters_; }
   /// The most recent connection error or dropped-packet reason ("" if none); any thread.
-  [[nodiscard]] std::string last_error() const;
+  [[nodiscard]] std::string last_error() const { return last_error_.get(); }
 
  private:
   class Session;  // Asio state, lives on the client thread (vicon_source.cpp)
   friend class Session;
-  void set_last_error(std::string error);
+  void set_last_error(std::string error) { last_error_.set(std::move(error)); }
 
   ViconSourceOptions options_;
   std::string url_;
   SourceCounters counters_;
   ViconCounters vicon_counters_;
-  mutable std::mutex error_mutex_;
-  std::string last_error_;  // guarded by error_mutex_
-  std::unique_ptr<Session> session_;
-  std::thread thread_;
+  LastError last_error_;
+  LoopThread<Session> session_;  // last: joined before the members the session uses go
   bool started_ = false;
 };
 

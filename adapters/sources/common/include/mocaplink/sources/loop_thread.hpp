@@ -1,0 +1,92 @@
+// The thread of a socket source or emulator: an object that owns an Asio loop (`run()` until its
+// `stop()`), made, then run on its own thread, then stopped and joined. One implementation for
+// every network client and server (vicon, qtm, …) instead of each repeating the start/stop/join
+// dance; and the "last error" text such a source shows, set on its thread and read from any.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include "mocaplink/sources/descriptor.hpp"
+
+namespace mocaplink::sources {
+
+/// Thread-safety: make/run/stop/reset from one controlling thread. `Loop` needs `stop()`, callable
+/// from that thread while run() works on the other.
+template <typename Loop>
+class LoopThread {
+ public:
+  LoopThread() = default;
+  ~LoopThread() { stop(); }
+  LoopThread(const LoopThread&) = delete;
+  LoopThread& operator=(const LoopThread&) = delete;
+
+  /// Makes the loop object (not yet running); replaces one that never ran.
+  template <typename... Args>
+  Loop& make(Args&&... args) {
+    loop_ = std::make_unique<Loop>(std::forward<Args>(args)...);
+    return *loop_;
+  }
+  /// Runs `body(loop)` on a new thread (once per make()).
+  template <typename Body>
+  void run(Body body) {
+    thread_ = std::thread([this, b = std::move(body)]() mutable { b(*loop_); });
+  }
+  /// Stops the loop, joins the thread and destroys the loop. Idempotent.
+  void stop() {
+    if (!loop_) return;
+    loop_->stop();
+    if (thread_.joinable()) thread_.join();
+    loop_.reset();
+  }
+  /// The loop object (nullptr before make() and after stop()).
+  [[nodiscard]] Loop* get() const { return loop_.get(); }
+
+ private:
+  std::unique_ptr<Loop> loop_;
+  std::thread thread_;
+};
+
+/// Emulator::start() of a server whose `Impl` (made from `args`) has `listen()` (an error or
+/// nullopt), `bound_port()` and `run(FrameProvider)`: checks the rate, binds, and runs it on
+/// `loop`'s thread; `port` gets the bound port.
+template <typename Impl, typename... Args>
+[[nodiscard]] std::optional<std::string> start_emulator(LoopThread<Impl>& loop, std::uint16_t& port,
+                                                        double rate_hz,
+                                                        Emulator::FrameProvider provider,
+                                                        Args&&... args) {
+  if (loop.get() != nullptr) return "already started";
+  if (!(rate_hz > 0.0 && rate_hz <= 10000.0)) return "rate must be in (0, 10000] Hz";
+  Impl& impl = loop.make(std::forward<Args>(args)...);
+  if (auto err = impl.listen()) {
+    loop.stop();
+    return err;
+  }
+  port = impl.bound_port();
+  loop.run([p = std::move(provider)](Impl& i) mutable { i.run(std::move(p)); });
+  return std::nullopt;
+}
+
+/// A source's most recent error or warning text; any thread.
+class LastError {
+ public:
+  [[nodiscard]] std::string get() const {
+    const std::lock_guard lock(mutex_);
+    return text_;
+  }
+  void set(std::string text) {
+    const std::lock_guard lock(mutex_);
+    text_ = std::move(text);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::string text_;
+};
+
+}  // namespace mocaplink::sources
