@@ -209,6 +209,33 @@ TEST(QtmLoopback, ReconnectsAfterARestartAndNeverDeliversAStalePose) {
   EXPECT_GE(source.counters().reconnects, 1u);
 }
 
+TEST(QtmLoopback, DuplicateNamesAreUntrackedAndSaidInTheConnectedState) {
+  QtmServerOptions options;
+  options.listen_host = "127.0.0.1";
+  options.port = 0;
+  options.rate_hz = 200.0;
+  QtmServer server(options);
+  ASSERT_FALSE(server.start([](std::uint64_t tick) {
+    auto f = frame(tick + 1);
+    f.bodies[1].name = "Body1";
+    f.bodies[1].tracked = true;
+    return std::optional<core::MocapFrame>(f);
+  }));
+  QtmSource source(client_options(server.port()), "qtm://test");
+  Collector got;
+  source.start(got.frame_sink(), got.state_sink());
+  ASSERT_TRUE(got.wait_frames(5));
+  source.stop();
+  EXPECT_NE(connected_detail(got.events()).find("duplicate body name Body1"), std::string::npos)
+      << connected_detail(got.events());
+  for (const auto& e : got.events()) {
+    if (!e.is_frame) continue;
+    ASSERT_EQ(e.frame.bodies.size(), 2u);
+    EXPECT_FALSE(e.frame.bodies[0].tracked);
+    EXPECT_FALSE(e.frame.bodies[1].tracked);
+  }
+}
+
 TEST(QtmLoopback, TheClientBeyondTheLimitGetsQtmsRefusal) {
   QtmServerOptions options;
   options.max_clients = 1;

@@ -261,8 +261,8 @@ class QtmSource::Session {
     } else {
       detail += " over TCP";
     }
+    connected_detail_ = detail;
     request_parameters();
-    report_(SourceState::connected, detail);
   }
 
   std::string open_udp() {
@@ -351,18 +351,22 @@ class QtmSource::Session {
     bodies_ = p.bodies;
     if (p.frequency_hz) frequency_hz_ = p.frequency_hz;
     ambiguous_.clear();
+    std::string warnings;
+    const auto warn = [&](const std::string& text) {
+      owner_.set_last_error(text);
+      warnings += "; " + text;
+    };
     std::set<std::string> seen;
     for (const auto& b : p.bodies) {
       if (!seen.insert(b.name).second) ambiguous_.insert(b.name);
-      if (!b.global) {
-        owner_.set_last_error("body " + b.name +
-                              " is not in global coordinates (Data_origin / Data_orientation)");
-      }
+      if (!b.global) warn("body " + b.name + " is not in global coordinates (Data_origin)");
     }
     if (!ambiguous_.empty()) {
-      owner_.set_last_error("duplicate body name " + *ambiguous_.begin() +
-                            " in QTM: those bodies stay untracked");
+      warn("duplicate body name " + *ambiguous_.begin() + " in QTM: those bodies stay untracked");
     }
+    // Connected once the first body list is in, with what is wrong in it.
+    report_(SourceState::connected,
+            connected_detail_ + ", " + std::to_string(p.bodies.size()) + " bodies" + warnings);
     if (!streaming_) {
       streaming_ = true;
       std::string cmd = "StreamFrames AllFrames ";
@@ -451,6 +455,7 @@ class QtmSource::Session {
   std::optional<std::vector<wq::BodyParameters>> bodies_;
   std::optional<double> frequency_hz_;
   std::set<std::string> ambiguous_;
+  std::string connected_detail_;
   bool parameters_pending_ = false;
   bool streaming_ = false;
   bool probe_sent_ = false;
