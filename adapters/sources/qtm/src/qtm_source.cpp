@@ -469,15 +469,10 @@ class QtmSource::Session {
 QtmSource::QtmSource(QtmSourceOptions options, std::string url)
     : options_(std::move(options)), url_(std::move(url)) {}
 
-QtmSource::~QtmSource() {
-  stop();
-}
+QtmSource::~QtmSource() = default;  // session_ (declared last) stops and joins first
 
 void QtmSource::start(FrameSink on_frame, StateSink on_state) {
-  if (started_) return;
-  started_ = true;
-  session_.make(*this, std::move(on_frame), std::move(on_state));
-  session_.run([](Session& session) { session.run(); });
+  session_.start_once(*this, std::move(on_frame), std::move(on_state));
 }
 
 void QtmSource::stop() {

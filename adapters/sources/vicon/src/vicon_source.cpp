@@ -308,15 +308,10 @@ class ViconSource::Session {
 ViconSource::ViconSource(ViconSourceOptions options, std::string url)
     : options_(std::move(options)), url_(std::move(url)) {}
 
-ViconSource::~ViconSource() {
-  stop();
-}
+ViconSource::~ViconSource() = default;  // session_ (declared last) stops and joins first
 
 void ViconSource::start(FrameSink on_frame, StateSink on_state) {
-  if (started_) return;
-  started_ = true;
-  session_.make(*this, std::move(on_frame), std::move(on_state));
-  session_.run([](Session& session) { session.run(); });
+  session_.start_once(*this, std::move(on_frame), std::move(on_state));
 }
 
 void ViconSource::stop() {

@@ -37,6 +37,14 @@ class LoopThread {
   void run(Body body) {
     thread_ = std::thread([this, b = std::move(body)]() mutable { b(*loop_); });
   }
+  /// make(args…), then `loop.run()` on the thread: the first time only (a Source's start()).
+  template <typename... Args>
+  void start_once(Args&&... args) {
+    if (started_) return;
+    started_ = true;
+    make(std::forward<Args>(args)...);
+    run([](Loop& loop) { loop.run(); });
+  }
   /// Stops the loop, joins the thread and destroys the loop. Idempotent.
   void stop() {
     if (!loop_) return;
@@ -50,6 +58,7 @@ class LoopThread {
  private:
   std::unique_ptr<Loop> loop_;
   std::thread thread_;
+  bool started_ = false;
 };
 
 /// Emulator::start() of a server whose `Impl` (made from `args`) has `listen()` (an error or

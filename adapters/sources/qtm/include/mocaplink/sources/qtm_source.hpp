@@ -88,7 +88,6 @@ class QtmSource final : public Source {
   QtmCounters qtm_counters_;
   LastError last_error_;
   LoopThread<Session> session_;  // last: joined before the members the session uses go
-  bool started_ = false;
 };
 
 /// qtm:// for the source registry: parse_qtm_options, a QtmSource, and the QtmServer emulator

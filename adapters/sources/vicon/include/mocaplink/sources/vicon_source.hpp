@@ -81,7 +81,6 @@ class ViconSource final : public Source {
   ViconCounters vicon_counters_;
   LastError last_error_;
   LoopThread<Session> session_;  // last: joined before the members the session uses go
-  bool started_ = false;
 };
 
 /// vicon:// for the source registry: parse_vicon_options, a ViconSource, and the ViconServer
