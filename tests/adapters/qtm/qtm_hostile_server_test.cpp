@@ -5,7 +5,7 @@
 // pose), and a server that refuses with an error packet.
 #include <atomic>
 #include <cstring>
-#include <limits>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
