@@ -118,7 +118,8 @@ class Daemon {
   // PATCHed rates (config::update_vehicle). Live-only choices (a PATCHed message set, pause) are
   // the Bridge's alone.
   config::Config config_;
-  std::string source_error_;  // the source's last problem, "" when connected (dashboard)
+  std::string source_error_;            // the source's last problem, "" when connected (dashboard)
+  core::LatencyWindow bridge_latency_;  // frame received → its last datagram sent (dashboard)
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
@@ -346,6 +347,7 @@ void Daemon::drain() {
   for (auto& item : batch_) {
     if (recorder_) recorder_->on_frame(item.frame);
     dispatch(bridge_.on_frame(item.frame, item.received));
+    bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
 }
@@ -436,7 +438,7 @@ int Daemon::run() {
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
       loop_,
-      DashboardAccess{bridge_, config_, vehicles_, source_error_,
+      DashboardAccess{bridge_, config_, vehicles_, source_error_, bridge_latency_,
                       [this](const std::vector<config::VehicleKey>& keys, bool paused) {
                         return add_vehicle(keys, paused);
                       },
