@@ -92,7 +92,7 @@ class Daemon {
   void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
-  void dispatch(core::BridgeOutput&& out);
+  void dispatch(const core::BridgeOutput& out);
   void on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame, core::HostTime t);
   void save_signing();
   void stop(const std::string& reason);
@@ -120,6 +120,7 @@ class Daemon {
   config::Config config_;
   std::string source_error_;            // the source's last problem, "" when connected (dashboard)
   core::LatencyWindow bridge_latency_;  // frame received → its last datagram sent (dashboard)
+  core::BridgeOutput frame_output_;     // per frame, kept for its capacity
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
@@ -346,13 +347,14 @@ void Daemon::drain() {
   queue_.drain(batch_);
   for (auto& item : batch_) {
     if (recorder_) recorder_->on_frame(item.frame);
-    dispatch(bridge_.on_frame(item.frame, item.received));
+    bridge_.on_frame(item.frame, item.received, frame_output_);  // reused: no allocation
+    dispatch(frame_output_);
     bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
 }
 
-void Daemon::dispatch(core::BridgeOutput&& out) {
+void Daemon::dispatch(const core::BridgeOutput& out) {
   const bool recording = recorder_ != nullptr;
   const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
   for (const auto& m : out.messages) {
