@@ -62,10 +62,13 @@ def main():
     with open(config, "w") as f:
         f.write(f'[mocap]\nsource = "sim://?bodies=1&rate_hz=240"\n[http]\nlisten = "127.0.0.1:{port}"\n'
                 f'[[vehicle]]\nname = "v1"\nbody = "Body1"\n'
-                f'link = "udp://127.0.0.1:{udp.getsockname()[1]}"\nprofile = "px4"\nrate_hz = 50\n')
+                f'link = "udp://127.0.0.1:{udp.getsockname()[1]}"\nsystem_id = 1\nprofile = "px4"\n'
+                f'rate_hz = 50\n')
     bridge = subprocess.Popen([binary, "run", "--config", config], stderr=subprocess.DEVNULL,
                               env=dict(os.environ, MOCAPLINK_STATE_DIR=os.path.join(work, "s")))
     while timed(port, "GET", "/api/status") is None:
+        if bridge.poll() is not None:
+            sys.exit(f"mocaplink run exited with {bridge.returncode}")
         time.sleep(0.1)
     rows = []
     phase(port, f"{label}, alone", rows)
