@@ -17,7 +17,12 @@ const ORIGIN = '[origin]\nlatitude_deg = 47.397742\nlongitude_deg = 8.545594\nal
 
 async function bridge(dir, name, source, extraArgs, wait) {
   const vehicles = [];
-  for (let i = 0; i < 3; i += 1) vehicles.push(await new h.UdpVehicle().bind());
+  for (let i = 0; i < 3; i += 1) {
+    const v = await new h.UdpVehicle().bind();
+    // Counts must be exact: room for seconds of datagrams if node is starved on a busy machine.
+    v.socket.setRecvBufferSize(4 << 20);
+    vehicles.push(v);
+  }
   const specs = [
     { name: 'quad', body: 'Body1', profile: 'px4', rate_hz: 240 },
     { name: 'classic', body: 'Body2', profile: 'classic', rate_hz: 100 },
