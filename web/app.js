@@ -42,6 +42,8 @@ function renderStation(station) {
   stateEl.className = station.connected ? 'ok' : 'bad';
   $('#st-rate').textContent = `${num(station.frame_rate_hz, 1, ' Hz')}${station.nominal_rate_hz ? ` / ${num(station.nominal_rate_hz, 0)}` : ''}`;
   $('#st-latency').textContent = station.latency_ms === null ? 'not reported' : num(station.latency_ms, 2, ' ms');
+  const bridge = station.bridge_latency_ms;
+  $('#st-bridge-latency').textContent = bridge === null ? '–' : `${num(bridge.last, 2, ' ms')} (p99 ${num(bridge.p99, 2, ' ms')})`;
   $('#st-frames').textContent = int(station.frames);
   $('#st-dropped').textContent = int(station.dropped);
 

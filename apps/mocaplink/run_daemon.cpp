@@ -3,7 +3,9 @@
 #include "run_daemon.hpp"
 
 #include <algorithm>
+#include <array>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <variant>
@@ -17,6 +19,7 @@
 #include "mocaplink/core/bridge.hpp"
 #include "mocaplink/io/bounded_queue.hpp"
 #include "mocaplink/io/clock.hpp"
+#include "mocaplink/io/link_udp.hpp"
 #include "mocaplink/io/signals.hpp"
 #include "mocaplink/io/signing_store.hpp"
 #include "mocaplink/mavlink/frame.hpp"
@@ -92,7 +95,7 @@ class Daemon {
   void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
-  void dispatch(core::BridgeOutput&& out);
+  void dispatch(const core::BridgeOutput& out);
   void on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame, core::HostTime t);
   void save_signing();
   void stop(const std::string& reason);
@@ -118,7 +121,9 @@ class Daemon {
   // PATCHed rates (config::update_vehicle). Live-only choices (a PATCHed message set, pause) are
   // the Bridge's alone.
   config::Config config_;
-  std::string source_error_;  // the source's last problem, "" when connected (dashboard)
+  std::string source_error_;            // the source's last problem, "" when connected (dashboard)
+  core::LatencyWindow bridge_latency_;  // frame received → its last datagram sent (dashboard)
+  core::BridgeOutput frame_output_;     // per frame, kept for its capacity
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
@@ -345,24 +350,39 @@ void Daemon::drain() {
   queue_.drain(batch_);
   for (auto& item : batch_) {
     if (recorder_) recorder_->on_frame(item.frame);
-    dispatch(bridge_.on_frame(item.frame, item.received));
+    bridge_.on_frame(item.frame, item.received, frame_output_);  // reused: no allocation
+    dispatch(frame_output_);
+    bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
 }
 
-void Daemon::dispatch(core::BridgeOutput&& out) {
+void Daemon::dispatch(const core::BridgeOutput& out) {
   const bool recording = recorder_ != nullptr;
   const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
-  for (const auto& m : out.messages) {
-    if (m.vehicle >= vehicles_.size() || !vehicles_[m.vehicle].link) continue;
-    auto& v = vehicles_[m.vehicle];
-    const auto bytes = m.frame.bytes();
-    (void)v.link->send(bytes);
-    if (recording) recorder_->on_mavlink(m.vehicle, unix_us, bytes);
-    if (v.signing) {
-      // The signature block of the frame we encoded (mavlink-wire.md §7.1), read by the codec.
-      const auto view = mavlink::parse_frame(bytes);
-      if (view && view->signature) v.last_signing_10us = view->signature->timestamp_10us;
+  const auto& messages = out.messages;
+  // A vehicle's messages are consecutive: each run goes to its link in one batch (one sendmmsg
+  // for UDP), in order.
+  std::array<std::span<const std::uint8_t>, io::UdpLink::kMaxBatch> batch;
+  for (std::size_t first = 0, end = 0; first < messages.size(); first = end) {
+    const std::size_t vehicle = messages[first].vehicle;
+    end = first;
+    while (end < messages.size() && messages[end].vehicle == vehicle &&
+           end - first < batch.size()) {
+      batch[end - first] = messages[end].frame.bytes();
+      ++end;
+    }
+    if (vehicle >= vehicles_.size() || !vehicles_[vehicle].link) continue;
+    auto& v = vehicles_[vehicle];
+    (void)v.link->send_batch({batch.data(), end - first});
+    for (std::size_t k = first; k < end; ++k) {
+      const auto bytes = messages[k].frame.bytes();
+      if (recording) recorder_->on_mavlink(vehicle, unix_us, bytes);
+      if (v.signing) {
+        // The signature block of the frame we encoded (mavlink-wire.md §7.1), read by the codec.
+        const auto view = mavlink::parse_frame(bytes);
+        if (view && view->signature) v.last_signing_10us = view->signature->timestamp_10us;
+      }
     }
   }
   for (const auto& e : out.events) summary_.on_event(e, io::host_now());
@@ -436,7 +456,7 @@ int Daemon::run() {
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
       loop_,
-      DashboardAccess{bridge_, config_, vehicles_, source_error_,
+      DashboardAccess{bridge_, config_, vehicles_, source_error_, bridge_latency_,
                       [this](const std::vector<config::VehicleKey>& keys, bool paused) {
                         return add_vehicle(keys, paused);
                       },

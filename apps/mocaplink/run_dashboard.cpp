@@ -72,6 +72,7 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     // The context lists links in the snapshot's vehicle order (live vehicles by slot).
     const core::BridgeSnapshot snapshot = access_.bridge.snapshot(io::host_now());
     context_.source_error = access_.source_error;
+    context_.bridge_latency = access_.bridge_latency.summary();
     context_.links.clear();
     context_.links_down.clear();
     for (const auto& v : snapshot.vehicles) {

@@ -13,6 +13,7 @@
 
 #include "mocaplink/config/load.hpp"
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/latency_window.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 #include "run_links.hpp"
 
@@ -25,9 +26,10 @@ namespace mocaplink::app {
 /// What the dashboard reads and changes; all of it is touched on the loop thread only.
 struct DashboardAccess {
   core::Bridge& bridge;
-  const config::Config& config;              ///< [http] and the source URL
-  const std::vector<VehicleLink>& vehicles;  ///< by vehicle slot, as in the Bridge
-  const std::string& source_error;           ///< the source's last problem, "" when connected
+  const config::Config& config;               ///< [http] and the source URL
+  const std::vector<VehicleLink>& vehicles;   ///< by vehicle slot, as in the Bridge
+  const std::string& source_error;            ///< the source's last problem, "" when connected
+  const core::LatencyWindow& bridge_latency;  ///< frame received → its last datagram sent
   /// Adds a vehicle given as the keys of a [[vehicle]] table and starts it (paused if asked).
   std::function<std::optional<web::ApiError>(const std::vector<config::VehicleKey>& keys,
                                              bool paused)>

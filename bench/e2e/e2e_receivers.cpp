@@ -5,7 +5,12 @@
 // CLOCK_MONOTONIC too: one host clock, docs/performance.md "End to end"). Stops when nothing has
 // arrived for 1.5 s after the first datagram (the bridge was stopped), and prints one JSON line.
 // Usage: e2e_receivers --vehicles N --config OUT.toml [--seconds 30] [--rate-hz 240]
-//                      [--mocap-hz 240] [--bodies 64]
+//                      [--mocap-hz 240] [--bodies 64] [--source URL] [--http ADDR]
+//                      [--first-address 127.0.0.2] [--report-s S] [--idle-s 1.5]
+// --source replaces the sim:// source, --http adds a dashboard, --first-address binds vehicle 1 to
+// another loopback address (bench/soak black-holes it), --report-s also prints one JSON line every
+// S seconds with what arrived in that interval (bench/soak), --idle-s is the silence that ends it.
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <sys/epoll.h>
@@ -46,6 +51,11 @@ int main(int argc, char** argv) {
   double mocap_hz = 240.0;
   int bodies = 64;
   std::string config_path;
+  std::string source;
+  std::string http;
+  std::string first_address = "127.0.0.1";
+  double report_s = 0.0;
+  double idle_s = 1.5;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     const char* value = argv[i + 1];
@@ -55,6 +65,11 @@ int main(int argc, char** argv) {
     if (key == "--mocap-hz") mocap_hz = std::atof(value);
     if (key == "--bodies") bodies = std::atoi(value);
     if (key == "--config") config_path = value;
+    if (key == "--source") source = value;
+    if (key == "--http") http = value;
+    if (key == "--first-address") first_address = value;
+    if (key == "--report-s") report_s = std::atof(value);
+    if (key == "--idle-s") idle_s = std::atof(value);
   }
   if (vehicles < 1 || config_path.empty()) {
     std::fprintf(stderr, "usage: e2e_receivers --vehicles N --config OUT.toml [...]\n");
@@ -65,7 +80,12 @@ int main(int argc, char** argv) {
   std::vector<int> sockets;
   std::FILE* config = std::fopen(config_path.c_str(), "w");
   if (config == nullptr) return 1;
-  std::fprintf(config, "[mocap]\nsource = \"sim://?bodies=%d&rate_hz=%g\"\n", bodies, mocap_hz);
+  if (source.empty()) {
+    std::fprintf(config, "[mocap]\nsource = \"sim://?bodies=%d&rate_hz=%g\"\n", bodies, mocap_hz);
+  } else {
+    std::fprintf(config, "[mocap]\nsource = \"%s\"\n", source.c_str());
+  }
+  if (!http.empty()) std::fprintf(config, "[http]\nlisten = \"%s\"\n", http.c_str());
   for (int i = 0; i < vehicles; ++i) {
     const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
     const int buffer = 1 << 20;
@@ -73,6 +93,10 @@ int main(int argc, char** argv) {
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (i == 0 && ::inet_pton(AF_INET, first_address.c_str(), &addr.sin_addr) != 1) {
+      std::fprintf(stderr, "bad --first-address %s\n", first_address.c_str());
+      return 1;
+    }
     socklen_t len = sizeof addr;
     if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
         ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
@@ -85,9 +109,10 @@ int main(int argc, char** argv) {
     ::epoll_ctl(epoll, EPOLL_CTL_ADD, fd, &ev);
     sockets.push_back(fd);
     std::fprintf(config,
-                 "[[vehicle]]\nname = \"v%d\"\nbody = \"Body%d\"\nlink = \"udp://127.0.0.1:%d\"\n"
+                 "[[vehicle]]\nname = \"v%d\"\nbody = \"Body%d\"\nlink = \"udp://%s:%d\"\n"
                  "system_id = %d\nprofile = \"px4\"\nrate_hz = %g\n",
-                 i + 1, i % bodies + 1, ntohs(addr.sin_port), i % 250 + 1, rate_hz);
+                 i + 1, i % bodies + 1, i == 0 ? first_address.c_str() : "127.0.0.1",
+                 ntohs(addr.sin_port), i % 250 + 1, rate_hz);
   }
   std::fclose(config);
   std::printf("ready\n");
@@ -95,12 +120,38 @@ int main(int argc, char** argv) {
 
   std::vector<std::uint64_t> odometry(static_cast<std::size_t>(vehicles), 0);
   std::vector<std::int64_t> latencies_us;
-  latencies_us.reserve(static_cast<std::size_t>(vehicles * rate_hz * seconds * 1.1));
+  if (report_s <= 0.0) {
+    latencies_us.reserve(static_cast<std::size_t>(vehicles * rate_hz * seconds * 1.1));
+  }
   std::array<epoll_event, 256> events{};
   std::array<std::uint8_t, 2048> buffer{};
   std::int64_t first_us = 0;
   std::int64_t last_us = 0;
-  while (first_us == 0 || monotonic_us() - last_us < 1'500'000) {
+  const auto idle_us = static_cast<std::int64_t>(idle_s * 1e6);
+  const auto report_us = static_cast<std::int64_t>(report_s * 1e6);
+  std::int64_t next_report_us = monotonic_us() + report_us;
+  std::vector<std::uint64_t> interval_odometry(static_cast<std::size_t>(vehicles), 0);
+  std::vector<std::int64_t> interval_latencies_us;
+  while (first_us == 0 || monotonic_us() - last_us < idle_us) {
+    if (report_us > 0 && monotonic_us() >= next_report_us) {
+      next_report_us += report_us;
+      std::uint64_t sum = 0;
+      for (const auto c : interval_odometry) sum += c;
+      const double v1 = static_cast<double>(interval_odometry[0]);
+      const double q50 = percentile(interval_latencies_us, 0.50);
+      const double q99 = percentile(interval_latencies_us, 0.99);
+      const double qmax = interval_latencies_us.empty()
+                              ? 0.0
+                              : static_cast<double>(*std::max_element(interval_latencies_us.begin(),
+                                                                      interval_latencies_us.end()));
+      std::printf(
+          "{\"interval\":true,\"odometry\":%llu,\"vehicle1\":%.0f,"
+          "\"latency_us\":{\"p50\":%.0f,\"p99\":%.0f,\"max\":%.0f}}\n",
+          static_cast<unsigned long long>(sum), v1, q50, q99, qmax);
+      std::fflush(stdout);
+      std::fill(interval_odometry.begin(), interval_odometry.end(), 0);
+      interval_latencies_us.clear();
+    }
     const int n = ::epoll_wait(epoll, events.data(), static_cast<int>(events.size()), 100);
     for (int e = 0; e < n; ++e) {
       const std::uint32_t v = events[static_cast<std::size_t>(e)].data.u32;
@@ -118,7 +169,13 @@ int main(int argc, char** argv) {
         std::uint64_t time_usec = 0;
         for (std::size_t b = 0; b < 8; ++b) time_usec |= std::uint64_t{buffer[10 + b]} << (8 * b);
         ++odometry[v];
-        latencies_us.push_back(now_us - static_cast<std::int64_t>(time_usec));
+        const std::int64_t latency_us = now_us - static_cast<std::int64_t>(time_usec);
+        if (report_us > 0) {  // an hour of samples would not fit: per interval only
+          ++interval_odometry[v];
+          interval_latencies_us.push_back(latency_us);
+        } else {
+          latencies_us.push_back(latency_us);
+        }
       }
     }
   }

@@ -1,44 +1,75 @@
 #!/usr/bin/env bash
-# bench/e2e: sim:// (240 Hz) → mocaplink run → N UDP receivers on loopback, for N in $VEHICLES.
-# Prints one markdown table row per N: frames lost, latency p50/p99/max (frame generated →
-# ODOMETRY datagram received, CLOCK_MONOTONIC), CPU (user+sys as % of one core) and peak RSS of
-# mocaplink. Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN [SECONDS] [N...]
-# NICE=-10 runs both processes at that priority (a shared, busy machine; needs root).
+# bench/e2e: sim:// (240 Hz) → mocaplink run → N UDP receivers on loopback, for N in $VEHICLES,
+# and the floor (bench/e2e/e2e_floor: the same source and loop hand-off, one pre-encoded datagram
+# per vehicle, no logic) in the same run, right before mocaplink for each N.
+# Prints one markdown table row per N: mocap frames, ODOMETRY lost, latency p50/p99 of the floor
+# and of mocaplink (frame's host capture time → datagram received, CLOCK_MONOTONIC), mocaplink's
+# ratio to the floor, mocaplink's CPU (user+sys as % of one core) and peak RSS.
+# Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN FLOOR_BIN [SECONDS] [N...]
+# NICE=-10 runs every process at that priority (a shared, busy machine; needs root).
+# LOAD=compile keeps one compiler busy for the whole run (the other core loaded by a build).
 set -euo pipefail
 bin=$1
 receivers=$2
-seconds=${3:-30}
-shift 3 || true
-counts=("${@:-1 5 50 500}")
-[ $# -eq 0 ] && counts=(1 5 50 500)
+floor=$3
+seconds=${4:-30}
+shift 4 || true
+counts=("$@")
+[ $# -eq 0 ] && counts=(1 5 50 500 1000)
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-echo "| vehicles | mocap frames | ODOMETRY received | lost | latency p50 / p99 / max | CPU (one core) | peak RSS |"
-echo "|---:|---:|---:|---:|---|---:|---:|"
-for n in "${counts[@]}"; do
-  prio=()
-  [ -n "${NICE:-}" ] && prio=(nice -n "$NICE")
+loader=""
+cleanup() {
+  [ -n "$loader" ] && kill "$loader" 2>/dev/null
+  rm -rf "$work"
+}
+trap cleanup EXIT
+if [ "${LOAD:-}" = compile ]; then
+  src=$(dirname "$0")/e2e_receivers.cpp
+  (while true; do c++ -O2 -std=c++20 -c "$src" -o "$work/load.o"; done) >/dev/null 2>&1 &
+  loader=$!
+fi
+prio=()
+[ -n "${NICE:-}" ] && prio=(nice -n "$NICE")
+
+# measure N BIN ARGS...: runs BIN ARGS... against N fresh receivers for $seconds; prints
+# "frames received p50_us p99_us cpu_pct rss_mib".
+measure() {
+  local n=$1
+  shift
   "${prio[@]}" "$receivers" --vehicles "$n" --config "$work/c.toml" > "$work/recv.out" &
-  rpid=$!
+  local rpid=$!
   while ! grep -q ready "$work/recv.out" 2>/dev/null; do sleep 0.1; done
   MOCAPLINK_STATE_DIR="$work/state" MOCAPLINK_SUMMARY_S=3600 /usr/bin/time -f '%U %S %e %M' \
-    -o "$work/time.out" "${prio[@]}" "$bin" run --config "$work/c.toml" 2> "$work/run.err" &
-  tpid=$!
+    -o "$work/time.out" "${prio[@]}" "$@" --config "$work/c.toml" 2> "$work/run.err" &
+  local tpid=$!
   sleep "$seconds"
-  pkill -TERM -P "$tpid" || true  # the child of /usr/bin/time (mocaplink, or nice's exec)
+  pkill -TERM -P "$tpid" || true  # the child of /usr/bin/time (or nice's exec)
   wait "$tpid" || true
   wait "$rpid"
+  local user sys wall rss_kb frames overflows
   read -r user sys wall rss_kb < "$work/time.out"
-  frames=$(sed -n 's/.*final: source [^ ]*: [a-z ]*, \([0-9]*\) frames.*/\1/p' "$work/run.err")
+  frames=$(sed -n -e 's/.*final: source [^ ]*: [a-z ]*, \([0-9]*\) frames.*/\1/p' \
+    -e 's/^floor: \([0-9]*\) frames.*/\1/p' "$work/run.err")
   overflows=$(sed -n 's/.*final: source .* \([0-9]*\) queue overflows.*/\1/p' "$work/run.err")
   node -e '
     const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8").split("\n")[1]);
-    const [n, frames, overflows, user, sys, wall, rss] = process.argv.slice(2).map(Number);
-    const expected = n * (frames + overflows);
-    const lost = 100 * (1 - r.odometry / expected);
+    const [frames, user, sys, wall, rss] = process.argv.slice(2).map(Number);
+    console.log(frames, r.odometry, r.latency_us.p50, r.latency_us.p99,
+      (100 * (user + sys) / wall).toFixed(1), (rss / 1024).toFixed(1));
+  ' "$work/recv.out" "$((frames + ${overflows:-0}))" "$user" "$sys" "$wall" "$rss_kb"
+}
+
+echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | CPU | peak RSS |"
+echo "|---:|---:|---:|---|---|---|---:|---:|"
+for n in "${counts[@]}"; do
+  read -r ff fr fp50 fp99 _ _ < <(measure "$n" "$floor")
+  read -r mf mr mp50 mp99 cpu rss < <(measure "$n" "$bin" run)
+  node -e '
+    const [n, ff, fr, fp50, fp99, mf, mr, mp50, mp99, cpu, rss] = process.argv.slice(1).map(Number);
+    const lost = (frames, got) => `${(100 * (1 - got / (n * frames))).toFixed(3)} %`;
     const ms = (us) => (us / 1000).toFixed(2);
-    console.log(`| ${n} | ${frames + overflows} | ${r.odometry} | ${lost.toFixed(3)} % | ` +
-      `${ms(r.latency_us.p50)} / ${ms(r.latency_us.p99)} / ${ms(r.latency_us.max)} ms | ` +
-      `${(100 * (user + sys) / wall).toFixed(1)} % | ${(rss / 1024).toFixed(1)} MiB |`);
-  ' "$work/recv.out" "$n" "$frames" "$overflows" "$user" "$sys" "$wall" "$rss_kb"
+    const ratio = (a, b) => (b > 0 ? (a / b).toFixed(2) : "–");
+    console.log(`| ${n} | ${mf} | ${lost(ff, fr)} / ${lost(mf, mr)} | ${ms(fp50)} / ${ms(fp99)} ms | ` +
+      `${ms(mp50)} / ${ms(mp99)} ms | ${ratio(mp50, fp50)} / ${ratio(mp99, fp99)} | ${cpu} % | ${rss} MiB |`);
+  ' "$n" "$ff" "$fr" "$fp50" "$fp99" "$mf" "$mr" "$mp50" "$mp99" "$cpu" "$rss"
 done

@@ -85,6 +85,8 @@ describe('dashboard of mocaplink run (sim source)', () => {
     assert.deepEqual(names.slice(0, 3), ['Body1', 'Body2', 'Body3']);
     assert.match(await page.locator('#st-source').textContent(), /^sim:/);
     await page.locator('#st-state', { hasText: 'connected' }).waitFor();
+    // The bridge's own latency, measured by the daemon: "0.05 ms (p99 0.31 ms)".
+    await page.locator('#st-bridge-latency', { hasText: /^\d+\.\d\d ms \(p99 \d+\.\d\d ms\)$/ }).waitFor();
     const card = page.locator('[data-vehicle="demo"]');
     assert.equal(await card.locator('.v-link').textContent(), `udp://127.0.0.1:${receiver.port}`);
     assert.equal(await card.locator('.v-profile').textContent(), 'px4');

@@ -80,4 +80,10 @@ std::chrono::milliseconds Link::next_backoff() noexcept {
   return backoff_;
 }
 
+std::size_t Link::send_batch(std::span<const std::span<const std::uint8_t>> frames) {
+  std::size_t sent = 0;
+  for (const auto& frame : frames) sent += send(frame) ? 1U : 0U;
+  return sent;
+}
+
 }  // namespace mocaplink::io

@@ -151,6 +151,12 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
                           return nullptr;
                         });
   status.station.error = snapshot.station.connected ? "" : context.source_error;
+  if (context.bridge_latency) {
+    const auto ms = [](core::Duration d) { return core::to_seconds(d) * 1e3; };
+    const core::LatencySummary& l = *context.bridge_latency;
+    status.station.bridge_latency_ms =
+        BridgeLatencyView{ms(l.last), ms(l.p50), ms(l.p99), ms(l.max)};
+  }
 
   std::map<std::string, RateWindow, std::less<>> next_rates;
   for (std::size_t i = 0; i < snapshot.vehicles.size(); ++i) {

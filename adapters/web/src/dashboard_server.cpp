@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <condition_variable>
 #include <cstring>
+#include <deque>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <utility>
@@ -24,6 +26,7 @@ using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 
 constexpr std::size_t kMaxBodyBytes = 64 * 1024;  // a vehicle spec is well under 1 KiB
+constexpr std::chrono::seconds kReadTimeout{2};
 constexpr std::string_view kVehiclePath = "/api/vehicles/";
 
 // Browsers get the page and talk only to this origin; nothing is loaded from elsewhere.
@@ -54,6 +57,56 @@ bool is_json_content_type(const std::string& content_type) {
 std::string host_for_url(const std::string& host) {
   return host.find(':') != std::string::npos ? "[" + host + "]" : host;
 }
+
+/// httplib's task queue with one thread per connection (up to `max_threads`; beyond that,
+/// connections wait in FIFO order for a thread): an idle connection, a client sending one byte a
+/// second or an event stream holds only its own thread, never one that another request needs
+/// (httplib's fixed pool let 16 idle connections stall /api/status for seconds). Idle threads
+/// cost no CPU; a thread ends with its connection (read timeout kReadTimeout between bytes).
+class ConnectionThreads final : public httplib::TaskQueue {
+ public:
+  explicit ConnectionThreads(std::size_t max_threads) : max_threads_(max_threads) {}
+  ~ConnectionThreads() override { shutdown(); }
+  ConnectionThreads(const ConnectionThreads&) = delete;
+  ConnectionThreads& operator=(const ConnectionThreads&) = delete;
+
+  void enqueue(std::function<void()> fn) override {
+    std::lock_guard lock(mutex_);
+    if (threads_ >= max_threads_) {
+      waiting_.push_back(std::move(fn));
+      return;
+    }
+    ++threads_;
+    std::thread([this, job = std::move(fn)]() mutable { run(std::move(job)); }).detach();
+  }
+
+  /// Waits for every connection to end (the listener has stopped; event streams end at once).
+  void shutdown() override {
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [this] { return threads_ == 0; });
+  }
+
+ private:
+  void run(std::function<void()> job) {
+    while (true) {
+      job();
+      std::lock_guard lock(mutex_);
+      if (waiting_.empty()) {
+        --threads_;
+        idle_.notify_all();  // under the lock: the queue may be destroyed once threads_ is 0
+        return;
+      }
+      job = std::move(waiting_.front());
+      waiting_.pop_front();
+    }
+  }
+
+  const std::size_t max_threads_;
+  std::mutex mutex_;
+  std::condition_variable idle_;
+  std::size_t threads_ = 0;
+  std::deque<std::function<void()>> waiting_;
+};
 
 }  // namespace
 
@@ -121,16 +174,21 @@ std::optional<std::string> DashboardServer::Impl::start() {
            "vehicles receive), or listen on 127.0.0.1";
   }
   install_routes();
-  const std::size_t workers = std::max(config_.worker_threads, config_.max_event_clients + 2);
-  server_.new_task_queue = [workers] { return new httplib::ThreadPool(workers); };
+  const std::size_t threads = std::max(config_.max_connections, config_.max_event_clients + 2);
+  server_.new_task_queue = [threads] { return new ConnectionThreads(threads); };
   server_.set_payload_max_length(kMaxBodyBytes);
   server_.set_keep_alive_timeout(2);
+  // Header and body deadlines: a connection that sends nothing for this long is closed (a stuck
+  // tab, a port scanner, a half-sent request).
+  server_.set_read_timeout(kReadTimeout);
   // httplib's default sets SO_REUSEPORT, which lets a second daemon bind the same port and
   // silently take half the requests. SO_REUSEADDR alone still allows a quick restart (TIME_WAIT)
   // but makes "port in use" an error.
-  server_.set_socket_options([](auto sock) {
+  int listen_socket = -1;
+  server_.set_socket_options([&listen_socket](auto sock) {
     int yes = 1;
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    listen_socket = static_cast<int>(sock);
   });
 
   errno = 0;
@@ -147,6 +205,10 @@ std::optional<std::string> DashboardServer::Impl::start() {
            (error != 0 ? std::string(std::strerror(error))
                        : std::string("address not available or host name does not resolve"));
   }
+  // httplib listens with a backlog of 5: a few idle connections waiting for accept() made the
+  // kernel drop new handshakes, and the operator's browser retried after 1, 3, 7 s. Listening
+  // again on the bound socket only raises the backlog.
+  if (listen_socket >= 0) ::listen(listen_socket, SOMAXCONN);
   port_ = static_cast<std::uint16_t>(bound);
   started_ = true;
   thread_ = std::thread([this] { server_.listen_after_bind(); });

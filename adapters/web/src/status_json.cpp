@@ -55,6 +55,11 @@ void to_json(nlohmann::json& j, const BodyView& body) {
                      {"resets", body.resets}};
 }
 
+void to_json(nlohmann::json& j, const BridgeLatencyView& latency) {
+  j = nlohmann::json{
+      {"last", latency.last}, {"p50", latency.p50}, {"p99", latency.p99}, {"max", latency.max}};
+}
+
 void to_json(nlohmann::json& j, const StationView& station) {
   j = nlohmann::json{{"source", station.source},
                      {"connected", station.connected},
@@ -65,7 +70,8 @@ void to_json(nlohmann::json& j, const StationView& station) {
                      {"jitter_ms", optional_json(station.jitter_ms)},
                      {"frames", station.frames},
                      {"dropped", station.dropped},
-                     {"bodies", station.bodies}};
+                     {"bodies", station.bodies},
+                     {"bridge_latency_ms", optional_json(station.bridge_latency_ms)}};
 }
 
 void to_json(nlohmann::json& j, const HeartbeatView& heartbeat) {

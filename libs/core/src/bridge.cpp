@@ -273,6 +273,13 @@ void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out)
 
 BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
   BridgeOutput out;
+  on_frame(frame, received, out);
+  return out;
+}
+
+void Bridge::on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
+  out.messages.clear();
+  out.events.clear();
   station_.on_frame(frame, received);
   const HostTime capture =
       capture_mapper_.on_frame(frame.capture_time, received, frame.source_latency);
@@ -289,7 +296,6 @@ BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
     if (!v || !v->spec.enabled) continue;
     v->sender.on_estimate(bodies_[v->body].published, context, out.messages);
   }
-  return out;
 }
 
 void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,

@@ -1,6 +1,7 @@
 // Sender (sender.hpp): decimation, per-profile message emission, clock-driven messages.
 #include "mocaplink/core/sender.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -74,21 +75,50 @@ bool Sender::set_rate_hz(double rate_hz) {
   if (!valid_rate(rate_hz)) return false;
   config_.rate_hz = rate_hz;
   period_ = period_of(rate_hz);
-  next_due_.reset();
+  // The new spacing counts from the last send: the next frame at least one new period after it
+  // sends (at once when that is already past), so the change shows on the next frame.
+  if (last_due_capture_) {
+    next_due_ = *last_due_capture_ + period_;
+  } else {
+    next_due_.reset();
+  }
   return true;
 }
 
+void Sender::observe_interval(SourceTime capture) {
+  if (last_capture_ && capture > *last_capture_) {
+    const Duration sample = capture - *last_capture_;
+    // Falls at once, rises slowly: a dropped frame (a double interval) barely moves it, while
+    // jitter only makes it a little smaller; it follows a source whose rate really changed.
+    if (!frame_interval_ || sample < *frame_interval_) {
+      frame_interval_ = sample;
+    } else {
+      *frame_interval_ += (sample - *frame_interval_) / 16;
+    }
+  }
+}
+
 bool Sender::due(SourceTime capture) {
-  if (!next_due_ || capture < *next_due_ - period_) {
+  const bool backwards = last_capture_ && capture < *last_capture_;
+  observe_interval(capture);
+  last_capture_ = capture;
+  if (!next_due_ || backwards) {
     // First frame, or the source clock went backwards (restart): start the schedule here.
     next_due_ = capture + period_;
+    last_due_capture_ = capture;
     return true;
   }
-  if (capture < *next_due_) return false;
+  // A frame claims the slot nearest to it: up to half a source frame interval early (never more
+  // than half our own period), so timestamp rounding and jitter do not push a send one frame late.
+  const Duration tolerance = std::min(frame_interval_.value_or(Duration::zero()), period_) / 2;
+  if (capture < *next_due_ - tolerance) return false;
+  // Advance by whole periods to the first slot after this frame: slots already past (frames the
+  // source dropped, a gap, a mocap rate below rate_hz) are skipped without a burst and without
+  // shifting the phase. A frame that claimed its slot late never skips the next one because of
+  // the tolerance alone (with jitter, that would lose sends).
   *next_due_ += period_;
-  // More than a whole period late (a gap in frames, or mocap slower than rate_hz): restart the
-  // phase at this frame rather than bursting to catch up.
-  if (*next_due_ <= capture) *next_due_ = capture + period_;
+  if (*next_due_ <= capture) *next_due_ += period_ * ((capture - *next_due_) / period_ + 1);
+  last_due_capture_ = capture;
   return true;
 }
 

@@ -83,6 +83,27 @@ TEST(UdpLink, SendsAndReadsRepliesOnTheSameSocket) {
   EXPECT_EQ(c.connects, 1u);
 }
 
+TEST(UdpLink, BatchArrivesAsDatagramsInOrder) {
+  asio::io_context loop;
+  Vehicle vehicle(loop);
+  UdpLink link(loop, "127.0.0.1", vehicle.port(), test::options());
+  link.start({}, {});
+  ASSERT_EQ(link.state(), LinkState::up);
+  // More frames than one sendmmsg takes, each told apart by its sequence byte.
+  std::vector<std::vector<std::uint8_t>> frames;
+  std::vector<std::span<const std::uint8_t>> spans;
+  for (std::size_t i = 0; i < UdpLink::kMaxBatch + 3; ++i) {
+    frames.push_back(kHeartbeat);
+    frames.back()[4] = static_cast<std::uint8_t>(i);
+  }
+  for (const auto& f : frames) spans.emplace_back(f);
+  EXPECT_EQ(link.send_batch(spans), frames.size());
+  ASSERT_TRUE(run_until(loop, [&] { return vehicle.datagrams.size() == frames.size(); }));
+  EXPECT_EQ(vehicle.datagrams, frames);
+  EXPECT_EQ(link.counters().frames_sent, frames.size());
+  EXPECT_EQ(link.counters().bytes_sent, frames.size() * kHeartbeat.size());
+}
+
 TEST(UdpLink, SurvivesPortUnreachableAndDeliversOnceSomeoneListens) {
   asio::io_context loop;
   std::uint16_t port = 0;

@@ -66,6 +66,8 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_DOUBLE_EQ(station["jitter_ms"].get<double>(), 0.3);
   EXPECT_EQ(station["frames"], 600);
   EXPECT_EQ(station["dropped"], 3);
+  EXPECT_EQ(station["bridge_latency_ms"],
+            (json{{"last", 0.12}, {"p50", 0.1}, {"p99", 0.45}, {"max", 0.9}}));
   ASSERT_EQ(station["bodies"].size(), 3U);
   const json& body1 = station["bodies"][0];
   EXPECT_EQ(body1["name"], "Body1");

@@ -44,6 +44,21 @@ core::BridgeSnapshot snapshot_at(double t_s, std::uint64_t odometry_sent) {
   return s;
 }
 
+TEST(BridgeViews, BridgeLatencyInMilliseconds) {
+  BridgeStatusBuilder builder(host_time_from_ns(0));
+  BridgeStatusContext context{"sim://", "", {"udp://127.0.0.1:14550"}, {}};
+  EXPECT_FALSE(builder.build(snapshot_at(2.0, 100), context).station.bridge_latency_ms);
+  using std::chrono::microseconds;
+  context.bridge_latency = core::LatencySummary{microseconds(120), microseconds(100),
+                                                microseconds(450), microseconds(900), 10};
+  const auto latency = builder.build(snapshot_at(2.1, 100), context).station.bridge_latency_ms;
+  ASSERT_TRUE(latency);
+  EXPECT_DOUBLE_EQ(latency->last, 0.12);
+  EXPECT_DOUBLE_EQ(latency->p50, 0.1);
+  EXPECT_DOUBLE_EQ(latency->p99, 0.45);
+  EXPECT_DOUBLE_EQ(latency->max, 0.9);
+}
+
 TEST(BridgeViews, MapsEveryField) {
   BridgeStatusBuilder builder(host_time_from_ns(0));
   const BridgeStatusContext context{"sim://", "", {"udp://127.0.0.1:14550"}, {}};

@@ -110,6 +110,23 @@ TEST(BridgeConfigCheck, RefusesInvalidConfigs) {
   expect_error(c, "tracking.gate_sigma");
 }
 
+TEST(BridgeFrames, ReusedOutputHoldsOnlyTheLatestFrame) {
+  // Two bridges fed the same frames: one returns a fresh output, the other refills one object.
+  Bridge fresh = make_bridge(two_vehicles());
+  Bridge reused = make_bridge(two_vehicles());
+  BridgeOutput kept;
+  for (std::uint64_t n = 1; n <= 30; ++n) {
+    const BridgeOutput expected = fresh.on_frame(frame_at(n, n < 20, true), received_at(n));
+    reused.on_frame(frame_at(n, n < 20, true), received_at(n), kept);
+    ASSERT_EQ(kept.messages.size(), expected.messages.size()) << n;
+    for (std::size_t i = 0; i < kept.messages.size(); ++i) {
+      EXPECT_EQ(kept.messages[i].vehicle, expected.messages[i].vehicle);
+      EXPECT_EQ(kept.messages[i].message.index(), expected.messages[i].message.index());
+    }
+    EXPECT_EQ(kept.events.size(), expected.events.size()) << n;
+  }
+}
+
 TEST(BridgeFrames, PosesInNedWithCaptureTimestamps) {
   Bridge bridge = make_bridge(two_vehicles());
   BridgeOutput last;

@@ -2,6 +2,7 @@
 // heartbeat and origin cadence, sequence numbers, pause, runtime rate changes, signing.
 #include "mocaplink/core/sender.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <variant>
@@ -91,16 +92,155 @@ TEST(SenderDecimation, MocapSlowerThanRateSendsEveryFrame) {
   EXPECT_EQ(count<mavlink::Odometry>(out), frames);
 }
 
-TEST(SenderDecimation, GapRestartsTheScheduleWithoutBurst) {
+TEST(SenderDecimation, GapKeepsThePhaseWithoutBurst) {
   Sender sender(config({MessageKind::odometry}, 50.0));
   std::vector<OutgoingMessage> out;
   SendContext ctx;
   sender.on_estimate(tracked_at(SourceTime{milliseconds(0)}), ctx, out);
-  // 1 s without frames, then frames every 5 ms: one send at once, the next 20 ms later.
+  // 1 s without frames, then frames every 5 ms: one send at once, the next on the 20 ms grid.
   for (int ms = 1000; ms <= 1040; ms += 5) {
     sender.on_estimate(tracked_at(SourceTime{milliseconds(ms)}), ctx, out);
   }
   EXPECT_EQ(out.size(), 4U);  // t = 0, 1000, 1020, 1040
+}
+
+/// A source as the sender sees it: nominal rate, how its timestamps are rounded, jitter, and
+/// which frames it drops. Deterministic (a fixed linear congruential generator).
+struct SourceShape {
+  const char* name;
+  double hz;
+  std::int64_t rounding_ns;  ///< timestamps are multiples of this (1 = exact ns)
+  std::int64_t jitter_ns;    ///< each timestamp moved by up to ± this
+  int drop_per_mille;        ///< frames the source drops
+};
+
+/// Capture times of `seconds_of_data` of the source (the frames it did not drop).
+std::vector<SourceTime> source_frames(const SourceShape& shape, double seconds_of_data) {
+  std::vector<SourceTime> times;
+  std::uint64_t state = 12345;
+  const auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return state >> 33;
+  };
+  const auto frames = static_cast<std::int64_t>(std::llround(shape.hz * seconds_of_data));
+  for (std::int64_t k = 0; k < frames; ++k) {
+    std::int64_t ns = std::llround(static_cast<double>(k) * 1e9 / shape.hz);
+    if (shape.jitter_ns > 0) {
+      ns +=
+          static_cast<std::int64_t>(next() % static_cast<std::uint64_t>(2 * shape.jitter_ns + 1)) -
+          shape.jitter_ns;
+    }
+    ns = (ns + shape.rounding_ns / 2) / shape.rounding_ns * shape.rounding_ns;
+    const bool dropped = k > 0 && static_cast<int>(next() % 1000) < shape.drop_per_mille;
+    if (!dropped) times.push_back(SourceTime{nanoseconds(10'000'000'000 + ns)});
+  }
+  return times;
+}
+
+std::vector<SourceTime> sent_captures(Sender& sender, const std::vector<SourceTime>& frames) {
+  std::vector<OutgoingMessage> out;
+  std::vector<SourceTime> sent;
+  for (const SourceTime t : frames) {
+    out.clear();
+    SendContext ctx;
+    ctx.now = host(t);
+    sender.on_estimate(tracked_at(t), ctx, out);
+    if (!out.empty()) sent.push_back(t);
+  }
+  return sent;
+}
+
+// Issue 15 "exact rates": min(rate_hz, source rate) within 0.5 % for every kind of source — live
+// (µs stamps, jitter), emulated and simulated (exact grids), replayed (µs-rounded text), with and
+// without dropped frames.
+TEST(SenderDecimation, OutputRateIsTheSmallerOfRateAndSourceRate) {
+  const SourceShape shapes[] = {
+      {"simulated 240 Hz, exact ns", 240.0, 1, 0, 0},
+      {"replayed 240 Hz, µs-rounded", 240.0, 1000, 0, 0},
+      {"replayed 240 Hz, µs-rounded, 2 % dropped", 240.0, 1000, 0, 20},
+      {"live 240 Hz, ±0.4 ms jitter, µs stamps", 240.0, 1000, 400'000, 0},
+      {"live 240 Hz, ±0.4 ms jitter, 2 % dropped", 240.0, 1000, 400'000, 20},
+      {"emulated 100 Hz, ms stamps", 100.0, 1'000'000, 0, 0},
+      {"live 360 Hz, ±0.3 ms jitter, 2 % dropped", 360.0, 1000, 300'000, 20},
+      {"live 50 Hz, ±2 ms jitter", 50.0, 1000, 2'000'000, 0},
+  };
+  const double rates[] = {500.0, 360.0, 240.0, 239.0, 120.0, 100.0, 60.0, 50.0, 30.0, 1.0};
+  const double seconds_of_data = 20.0;
+  for (const SourceShape& shape : shapes) {
+    const std::vector<SourceTime> frames = source_frames(shape, seconds_of_data);
+    const double source_hz = static_cast<double>(frames.size()) / seconds_of_data;
+    for (const double rate : rates) {
+      Sender sender(config({MessageKind::odometry}, rate));
+      const std::vector<SourceTime> sent = sent_captures(sender, frames);
+      const double expected = std::min(rate, source_hz) * seconds_of_data;
+      EXPECT_NEAR(static_cast<double>(sent.size()), expected, std::max(1.0, 0.005 * expected))
+          << shape.name << ", rate_hz " << rate;
+    }
+  }
+}
+
+TEST(SenderDecimation, EqualRatesSendEveryFrameWhateverTheRounding) {
+  for (const std::int64_t rounding : {std::int64_t{1}, std::int64_t{1000}, std::int64_t{10'000}}) {
+    const SourceShape shape{"240 Hz", 240.0, rounding, 0, 0};
+    const std::vector<SourceTime> frames = source_frames(shape, 10.0);
+    Sender sender(config({MessageKind::odometry}, 240.0));
+    EXPECT_EQ(sent_captures(sender, frames).size(), frames.size()) << rounding << " ns";
+  }
+}
+
+TEST(SenderDecimation, DroppedFramesDoNotShiftThePhase) {
+  const SourceShape shape{"240 Hz µs", 240.0, 1000, 0, 0};
+  const std::vector<SourceTime> all = source_frames(shape, 4.0);
+  // The same stream with 100 ms of frames missing (and a few single drops) after 1 s.
+  std::vector<SourceTime> holed;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const bool in_hole = k >= 240 && k < 264;
+    const bool single = k == 400 || k == 401 || k == 555;
+    if (!in_hole && !single) holed.push_back(all[k]);
+  }
+  for (const double rate : {50.0, 30.0, 120.0}) {
+    Sender a(config({MessageKind::odometry}, rate));
+    Sender b(config({MessageKind::odometry}, rate));
+    std::vector<SourceTime> sent_all = sent_captures(a, all);
+    const std::vector<SourceTime> sent_holed = sent_captures(b, holed);
+    // After the disturbances, both send on exactly the same frames.
+    const SourceTime after = all[600];
+    std::erase_if(sent_all, [after](SourceTime t) { return t < after; });
+    std::vector<SourceTime> tail(sent_holed.end() - static_cast<std::ptrdiff_t>(sent_all.size()),
+                                 sent_holed.end());
+    EXPECT_EQ(tail, sent_all) << rate;
+    Sender c(config({MessageKind::odometry}, rate));
+    EXPECT_LE(sent_holed.size(), sent_captures(c, all).size()) << "no burst after the hole";
+  }
+}
+
+TEST(SenderDecimation, RateChangeTakesEffectOnTheNextFrame) {
+  const SourceShape shape{"240 Hz µs", 240.0, 1000, 0, 0};
+  const std::vector<SourceTime> frames = source_frames(shape, 3.0);
+  Sender sender(config({MessageKind::odometry}, 10.0));
+  std::vector<OutgoingMessage> out;
+  std::vector<std::size_t> sent_at;  // frame indices that sent
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    if (k == 240) {
+      ASSERT_TRUE(sender.set_rate_hz(240.0));
+    }
+    if (k == 480) {
+      ASSERT_TRUE(sender.set_rate_hz(2.0));
+    }
+    out.clear();
+    SendContext ctx;
+    sender.on_estimate(tracked_at(frames[k]), ctx, out);
+    if (!out.empty()) sent_at.push_back(k);
+  }
+  const auto sends_in = [&sent_at](std::size_t from, std::size_t to) {
+    return std::count_if(sent_at.begin(), sent_at.end(),
+                         [&](std::size_t k) { return k >= from && k < to; });
+  };
+  EXPECT_EQ(sends_in(0, 240), 10);     // 10 Hz for 1 s
+  EXPECT_EQ(sends_in(240, 480), 240);  // 240 Hz from frame 240 on, that frame included
+  // 2 Hz from frame 480: the first send half a second after the last 240 Hz one, then 2 Hz.
+  EXPECT_EQ(sends_in(480, 720), 2);
+  EXPECT_EQ(sent_at[sent_at.size() - 2], 479U + 120U);
 }
 
 TEST(SenderDecimation, RuntimeRateChange) {

@@ -102,6 +102,10 @@ class Link {
   /// Sends one complete frame (≤ mavlink::kMaxFrameSize bytes). Returns false when the frame was
   /// dropped (counted): link not up, backlog full, or an OS error.
   virtual bool send(std::span<const std::uint8_t> frame) = 0;
+  /// Sends several frames in order, each as send() would (counted alike); returns how many were
+  /// sent. UDP hands them to the OS in one system call (sendmmsg) where it can; the default
+  /// calls send() for each.
+  virtual std::size_t send_batch(std::span<const std::span<const std::uint8_t>> frames);
   /// Stops receiving and reconnecting. Stream links try to write what is queued for at most
   /// `linger` before the socket closes; UDP sends synchronously, so nothing is pending.
   virtual void close(std::chrono::milliseconds linger = std::chrono::milliseconds{0}) = 0;

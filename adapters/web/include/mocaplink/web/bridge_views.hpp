@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/latency_window.hpp"
 #include "mocaplink/web/status.hpp"
 
 namespace mocaplink::web {
@@ -19,6 +21,8 @@ struct BridgeStatusContext {
   std::string source_error;        ///< last source connection problem, "" if none
   std::vector<std::string> links;  ///< link URL per vehicle (index as in the Bridge)
   std::vector<bool> links_down;    ///< per vehicle: the link cannot send (may be shorter)
+  /// The bridge's own latency over the latest frames (the daemon measures it), if any.
+  std::optional<core::LatencySummary> bridge_latency{};
 };
 
 /// "quadrotor", "ground_rover", ... (MAV_TYPE), or the number when not in our table.

@@ -1,5 +1,6 @@
 // The dashboard's HTTP server (docs/api.md): the embedded page at "/", the REST API under /api/
-// and server-sent events at /api/events, over cpp-httplib's own worker threads.
+// and server-sent events at /api/events, over cpp-httplib with one thread per connection (an idle
+// or slow client never holds a thread another request needs).
 #pragma once
 
 #include <chrono>
@@ -21,7 +22,8 @@ struct DashboardServerConfig {
   std::string token{};
   std::chrono::milliseconds event_period{100};  ///< /api/events period (about 10 updates/s), > 0
   std::size_t max_event_clients = 8;            ///< concurrent /api/events streams; more get 503
-  std::size_t worker_threads = 16;              ///< httplib workers; > max_event_clients
+  /// Connections served at once, one thread each (idle ones cost no CPU); more wait for one.
+  std::size_t max_connections = 256;
 };
 
 /// Owns the listening socket and the worker threads. start() once; stop() (or the destructor)

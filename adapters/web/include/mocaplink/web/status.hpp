@@ -38,6 +38,14 @@ struct BodyView {
   std::uint64_t resets = 0;  ///< filter re-initialisations (ODOMETRY reset_counter increments)
 };
 
+/// The bridge's latency figures (ms): the latest frame's and percentiles of the latest frames.
+struct BridgeLatencyView {
+  double last = 0.0;
+  double p50 = 0.0;
+  double p99 = 0.0;
+  double max = 0.0;
+};
+
 /// The mocap source and its figures (core StationSnapshot).
 struct StationView {
   std::string source{};        ///< source URL as configured ("sim://", "vicon://192.168.1.3")
@@ -50,6 +58,9 @@ struct StationView {
   std::uint64_t frames = 0;                 ///< frames received, cumulative
   std::uint64_t dropped = 0;                ///< frames missing from frame-number gaps, cumulative
   std::vector<BodyView> bodies{};           ///< in order of first appearance
+  /// The bridge's own latency (a frame received → the last datagram it caused sent), over the
+  /// latest frames (core::LatencyWindow); null until a frame was bridged.
+  std::optional<BridgeLatencyView> bridge_latency_ms{};
 };
 
 /// How the bridge hears from a vehicle over its link, as the dashboard shows it (docs/api.md

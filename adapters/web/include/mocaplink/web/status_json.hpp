@@ -9,6 +9,7 @@
 namespace mocaplink::web {
 
 void to_json(nlohmann::json& j, const BodyView& body);
+void to_json(nlohmann::json& j, const BridgeLatencyView& latency);
 void to_json(nlohmann::json& j, const StationView& station);
 void to_json(nlohmann::json& j, const HeartbeatView& heartbeat);
 void to_json(nlohmann::json& j, const VehicleView& vehicle);

@@ -170,6 +170,9 @@ class Bridge {
 
   /// A mocap frame received at `received`.
   BridgeOutput on_frame(const MocapFrame& frame, HostTime received);
+  /// The same into `out` (cleared first): a caller that keeps `out` from frame to frame reuses
+  /// its capacity, so the per-frame path does not allocate once it has grown.
+  void on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out);
   /// A decoded message from vehicle `vehicle`'s link (its slot; an empty or out-of-range slot is
   /// ignored).
   BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,

@@ -3,12 +3,15 @@
 // while the origin is unconfirmed, our TIMESYNC requests 1 Hz) on ticks. Pure: time is passed in.
 //
 // Decimation (DESIGN.md: sending is driven by mocap frames, decimated per vehicle to rate_hz,
-// independent of the mocap rate): a send is due when the estimate's capture time (source clock)
-// reaches `next_due`; each send advances next_due by exactly 1/rate_hz, so the long-run average is
-// rate_hz with no drift whatever the mocap rate (50 Hz from 240 Hz frames: 500 sends in 10 s), and
-// each send goes out on the first frame at or after its slot (lowest latency). After a gap (no
-// frame for more than one period, or a source clock going backwards) the schedule restarts at the
-// next frame. A mocap rate below rate_hz sends on every frame.
+// independent of the mocap rate): slots lie every 1/rate_hz on the source clock from the first
+// frame; each frame claims the slot nearest to it (it may be up to half a source frame interval
+// early, never more than half a period), so the output rate is min(rate_hz, source rate) exactly
+// whatever the source's jitter or timestamp rounding (240 Hz from a 240 Hz source stamped in µs
+// is 240 Hz, not every other frame). Slots advance by whole periods: a frame dropped by the source,
+// a gap, or a mocap rate below rate_hz skips slots without a burst and without shifting the phase
+// (50 Hz from 240 Hz frames: 500 sends in 10 s, with or without dropped frames). A source clock
+// going backwards restarts the schedule at that frame; a rate change counts the new period from
+// the last send and so takes effect on the next frame.
 //
 // What is sent when due (autopilots.md §12 "Common": never a stale pose):
 //   pose messages (ODOMETRY, VISION_*, ATT_POS_MOCAP, LOCAL_POSITION_NED): only while
@@ -143,7 +146,8 @@ class Sender {
   }
 
   // Runtime changes (the dashboard's controls). Take effect at the next frame.
-  /// New rate in (0, kMaxSenderRateHz]; false (unchanged) otherwise. Restarts the schedule.
+  /// New rate in (0, kMaxSenderRateHz]; false (unchanged) otherwise. The next slot is one new
+  /// period after the last send.
   bool set_rate_hz(double rate_hz);
   void set_messages(const MessageSet& messages) { config_.messages = messages; }
   void set_paused(bool paused) { paused_ = paused; }
@@ -156,6 +160,7 @@ class Sender {
 
  private:
   bool due(SourceTime capture);
+  void observe_interval(SourceTime capture);
   void emit(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
             std::vector<OutgoingMessage>& out);
   void emit_kind(MessageKind kind, const BodyEstimate& estimate, const SendContext& context,
@@ -167,6 +172,9 @@ class Sender {
   mavlink::SequenceCounter sequence_;
   std::optional<mavlink::OutgoingSigner> signer_;
   std::optional<SourceTime> next_due_;
+  std::optional<SourceTime> last_capture_;      ///< of the latest frame seen
+  std::optional<SourceTime> last_due_capture_;  ///< of the latest frame that claimed a slot
+  std::optional<Duration> frame_interval_;      ///< the source's frame interval, as observed
   std::optional<HostTime> next_heartbeat_;
   std::optional<HostTime> next_origin_;
   std::optional<HostTime> next_timesync_;

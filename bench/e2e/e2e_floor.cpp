@@ -1,0 +1,125 @@
+// bench/e2e floor: the least any bridge can do with the same input, to measure mocaplink against
+// (issue 15). It opens the same source as `mocaplink run` (the [mocap] source of the e2e
+// receivers' configuration, through the same source registry and source thread), hands each frame
+// to a loop thread the same way (asio::post onto an io_context), and there sends one datagram per
+// vehicle: a copy of one ODOMETRY frame encoded once at start (the same size as mocaplink's), with
+// only time_usec changed to the frame's host capture time (core::CaptureTimeMapper, as the bridge
+// stamps it). No tracking, no decimation, no encoding, no logic.
+// Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT and
+// prints "floor: N frames" on stderr)
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <asio/io_context.hpp>
+#include <asio/post.hpp>
+#include <asio/signal_set.hpp>
+
+#include "mocaplink/core/sender_clock.hpp"
+#include "mocaplink/mavlink/frame.hpp"
+#include "mocaplink/mavlink/messages.hpp"
+#include "mocaplink/sources/registry.hpp"
+
+namespace {
+
+struct Config {
+  std::string source;
+  std::vector<std::uint16_t> ports;
+};
+
+Config read_config(const std::string& path) {
+  Config c;
+  std::ifstream in(path);
+  const std::regex source(R"re(^source = "(.*)"$)re");
+  const std::regex link(R"re(^link = "udp://127\.0\.0\.1:(\d+)"$)re");
+  std::smatch m;
+  for (std::string line; std::getline(in, line);) {
+    if (std::regex_match(line, m, source)) c.source = m[1];
+    if (std::regex_match(line, m, link)) {
+      c.ports.push_back(static_cast<std::uint16_t>(std::stoi(m[1])));
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3 || std::string(argv[1]) != "--config") {
+    std::fprintf(stderr, "usage: e2e_floor --config C.toml\n");
+    return 1;
+  }
+  const Config config = read_config(argv[2]);
+  if (config.source.empty() || config.ports.empty()) {
+    std::fprintf(stderr, "e2e_floor: no source or no udp://127.0.0.1 links in %s\n", argv[2]);
+    return 1;
+  }
+  std::vector<int> sockets;
+  for (const std::uint16_t port : config.ports) {
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(port);
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+      std::perror("e2e_floor: socket");
+      return 1;
+    }
+    sockets.push_back(fd);
+  }
+  // One ODOMETRY as mocaplink's px4 profile fills it (quality and estimator type set, so the
+  // payload is not truncated more than the bridge's), encoded once.
+  mocaplink::mavlink::Odometry odometry{};
+  odometry.quality = 100;
+  odometry.estimator_type = 3;
+  const mocaplink::mavlink::Frame frame =
+      mocaplink::mavlink::encode(odometry, mocaplink::mavlink::FrameHeader{0, 1, 197});
+  std::array<std::uint8_t, mocaplink::mavlink::kMaxFrameSize> datagram{};
+  std::memcpy(datagram.data(), frame.bytes().data(), frame.size());
+  const std::size_t size = frame.size();
+
+  auto opened = mocaplink::sources::builtin_sources().open(config.source);
+  if (auto* error = std::get_if<std::string>(&opened)) {
+    std::fprintf(stderr, "e2e_floor: %s\n", error->c_str());
+    return 1;
+  }
+  auto source = std::move(std::get<0>(opened));
+  asio::io_context loop;
+  auto guard = asio::make_work_guard(loop);
+  asio::signal_set signals(loop, SIGINT, SIGTERM);
+  signals.async_wait([&](const std::error_code&, int) {
+    source->stop();
+    guard.reset();
+    loop.stop();
+  });
+  mocaplink::core::CaptureTimeMapper mapper;
+  std::uint64_t frames = 0;
+  source->start(
+      [&](mocaplink::core::MocapFrame f, mocaplink::core::HostTime received) {
+        asio::post(loop, [&, capture = f.capture_time, latency = f.source_latency, received] {
+          ++frames;
+          const std::uint64_t time_usec =
+              mocaplink::core::host_time_usec(mapper.on_frame(capture, received, latency));
+          for (std::size_t b = 0; b < 8; ++b) {
+            datagram[10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
+          }
+          for (const int fd : sockets) (void)::send(fd, datagram.data(), size, 0);
+        });
+      },
+      [](mocaplink::sources::SourceState, const std::string&) {});
+  loop.run();
+  std::fprintf(stderr, "floor: %llu frames, %zu-byte datagrams\n",
+               static_cast<unsigned long long>(frames), size);
+  return 0;
+}
