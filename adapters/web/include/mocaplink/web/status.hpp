@@ -49,7 +49,8 @@ struct StationView {
   std::optional<double> jitter_ms{};        ///< std. dev. of receive − capture time
   std::uint64_t frames = 0;                 ///< frames received, cumulative
   std::uint64_t dropped = 0;                ///< frames missing from frame-number gaps, cumulative
-  std::vector<BodyView> bodies{};           ///< in order of first appearance
+  bool drops_counted = true;  ///< false: the source has no frame numbers (VRPN); `dropped` is null
+  std::vector<BodyView> bodies{};  ///< in order of first appearance
 };
 
 /// How the bridge hears from a vehicle over its link, as the dashboard shows it (docs/api.md
