@@ -88,6 +88,7 @@ std::optional<core::MocapFrame> FrameAssembler::on_report(const Report& report,
   round_.push_back(Pending{k, !frozen});
   in_round_.insert(k);
   last_report_ = arrival;
+  lost_sent_ = false;
   return closed;
 }
 

@@ -147,6 +147,7 @@ TEST(VrpnFrameAssembler, SilenceGivesOneLossFrame) {
   FrameAssembler a(c);
   EXPECT_FALSE(a.idle_deadline());
   (void)a.on_report(report("A", 1), at_ms(0));
+  ASSERT_TRUE(a.idle_deadline());  // armed by the report itself, before any frame went out
   ASSERT_TRUE(a.on_drained());
   ASSERT_TRUE(a.idle_deadline());
   EXPECT_EQ(*a.idle_deadline(), at_ms(100));

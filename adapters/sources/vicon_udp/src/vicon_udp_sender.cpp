@@ -91,6 +91,10 @@ class ViconUdpSender::Impl {
     timer_.expires_at(schedule_->due());
     timer_.async_wait([this](const asio::error_code& ec) {
       if (ec) return;
+      // Frame numbers follow the schedule, as a Tracker's follow its cameras: a tick skipped
+      // or without a frame is a missing number.
+      next_frame_ = options_.first_frame +
+                    static_cast<std::uint32_t>(schedule_->tick()) * options_.frame_step;
       if (auto frame = provider_(schedule_->tick())) send(*frame);
       schedule_->advance(std::chrono::steady_clock::now());
       next_tick();

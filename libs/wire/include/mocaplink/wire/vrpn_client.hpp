@@ -126,7 +126,7 @@ class FrameAssembler {
   std::optional<core::HostTime> round_start_;
   std::optional<core::HostTime> last_report_;
   std::optional<core::SourceTime> last_capture_;
-  bool lost_sent_ = true;  ///< nothing to report lost until a frame went out
+  bool lost_sent_ = true;  ///< nothing to report lost until a report came
   std::uint64_t next_frame_ = 1;
   std::uint64_t ignored_bodies_ = 0;
   std::uint64_t frozen_samples_ = 0;
