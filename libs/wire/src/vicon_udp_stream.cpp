@@ -5,11 +5,17 @@
 
 namespace mocaplink::wire::vicon_udp {
 
-core::SourceTime Stream::capture_at(core::HostTime host) {
-  auto t = core::source_time_from_ns(host.time_since_epoch().count());
-  if (last_capture_ && t <= *last_capture_) t = *last_capture_ + std::chrono::microseconds(1);
-  last_capture_ = t;
-  return t;
+core::SourceTime Stream::capture_at(core::HostTime host, std::int64_t frames_since_last) {
+  std::optional<core::Duration> step;
+  if (!reference_ || frames_since_last <= 0) {
+    reference_ = std::pair{unwrapped_, host};
+  } else if (host - reference_->second >= std::chrono::milliseconds(500) &&
+             unwrapped_ > reference_->first) {
+    const auto period =
+        (host - reference_->second) / static_cast<std::int64_t>(unwrapped_ - reference_->first);
+    step = period * frames_since_last;
+  }
+  return clock_.next(host, step);
 }
 
 core::BodySample Stream::sample(const Object& o) {
@@ -48,6 +54,7 @@ Result<std::optional<core::MocapFrame>> Stream::on_datagram(std::span<const std:
   }
   const Datagram& d = parsed.value();
   counters_.unknown_items += d.unknown_items;
+  std::int64_t advanced = 0;  // frame numbers since the last datagram; 0: a new start
   lost_sent_ = false;
   if (last_raw_) {
     const std::int64_t diff = frame_difference(d.frame, *last_raw_);
@@ -72,6 +79,7 @@ Result<std::optional<core::MocapFrame>> Stream::on_datagram(std::span<const std:
       return std::optional<core::MocapFrame>();
     }
     if (diff > 0) {
+      advanced = diff;
       if (d.frame < *last_raw_) ++counters_.wraps;
       const auto step = static_cast<std::uint32_t>(diff);
       if (step_ == 0 || step < step_) step_ = step;
@@ -88,7 +96,7 @@ Result<std::optional<core::MocapFrame>> Stream::on_datagram(std::span<const std:
   core::MocapFrame frame;
   frame.frame_number = unwrapped_;
   frame.frame_step = step_ == 0 ? 1 : step_;
-  frame.capture_time = capture_at(arrival);
+  frame.capture_time = capture_at(arrival, advanced);
   for (const Object& o : d.objects) frame.bodies.push_back(sample(o));
   current_ = frame;
   return std::optional<core::MocapFrame>(std::move(frame));
@@ -100,7 +108,8 @@ std::optional<core::MocapFrame> Stream::on_silence(core::HostTime now) {
   core::MocapFrame frame;
   frame.frame_number = current_->frame_number;
   frame.frame_step = current_->frame_step;
-  frame.capture_time = capture_at(now);
+  frame.capture_time = clock_.next(now, std::nullopt);
+  reference_.reset();  // the period is measured again when the stream resumes
   for (const auto& name : names_) {
     core::BodySample s;
     s.name = name;

@@ -84,7 +84,10 @@ std::optional<core::MocapFrame> FrameAssembler::on_report(const Report& report,
   const bool frozen =
       config_.frozen_after.count() > 0 && arrival - body.changed >= config_.frozen_after;
   if (frozen) ++frozen_samples_;
-  if (!round_start_) round_start_ = arrival;
+  if (!round_start_) {
+    round_start_ = arrival;
+    round_stamp_ = report.time;
+  }
   round_.push_back(Pending{k, !frozen});
   in_round_.insert(k);
   last_report_ = arrival;
@@ -108,6 +111,8 @@ void FrameAssembler::reset() {
   in_round_.clear();
   previous_round_.clear();
   round_start_.reset();
+  round_stamp_.reset();
+  last_stamp_.reset();
   last_report_.reset();
   lost_sent_ = true;
 }
@@ -117,20 +122,23 @@ std::optional<core::MocapFrame> FrameAssembler::flush() {
   return close_round();
 }
 
-core::SourceTime FrameAssembler::next_capture(core::HostTime host) {
-  auto capture = core::source_time_from_ns(host.time_since_epoch().count());
-  if (last_capture_ && capture <= *last_capture_) {
-    capture = *last_capture_ + std::chrono::microseconds(1);
+core::SourceTime FrameAssembler::next_capture(core::HostTime host, std::optional<Timeval> stamp) {
+  std::optional<core::Duration> step;
+  if (stamp && last_stamp_) {
+    const auto us = [](const Timeval& t) {
+      return static_cast<std::int64_t>(t.sec) * 1'000'000 + static_cast<std::int64_t>(t.usec);
+    };
+    step = std::chrono::microseconds(us(*stamp) - us(*last_stamp_));
   }
-  last_capture_ = capture;
-  return capture;
+  last_stamp_ = stamp;
+  return clock_.next(host, step);
 }
 
 core::MocapFrame FrameAssembler::close_round() {
   core::MocapFrame frame;
   frame.frame_number = next_frame_++;
   frame.frame_step = 0;
-  frame.capture_time = next_capture(*round_start_);
+  frame.capture_time = next_capture(*round_start_, round_stamp_);
   for (const Pending& p : round_) {
     core::BodySample s;
     s.name = known_[p.key].name;
@@ -143,6 +151,7 @@ core::MocapFrame FrameAssembler::close_round() {
   in_round_.clear();
   round_.clear();
   round_start_.reset();
+  round_stamp_.reset();
   lost_sent_ = false;
   return frame;
 }
@@ -162,7 +171,7 @@ std::optional<core::MocapFrame> FrameAssembler::on_idle(core::HostTime now) {
   core::MocapFrame frame;
   frame.frame_number = next_frame_++;
   frame.frame_step = 0;
-  frame.capture_time = next_capture(now);
+  frame.capture_time = next_capture(now, std::nullopt);
   for (const Known& k : known_) {
     core::BodySample s;
     s.name = k.name;

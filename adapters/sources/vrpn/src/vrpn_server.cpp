@@ -47,12 +47,19 @@ constexpr std::int32_t kPosQuatId = 4;
 constexpr std::int32_t kVelocityId = 5;
 constexpr std::string_view kControlSender = "VRPN Control";
 
-vr::Timeval wall_clock() {
-  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
-                      std::chrono::system_clock::now().time_since_epoch())
-                      .count();
+std::int64_t wall_clock_us() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+vr::Timeval timeval_of(std::int64_t us) {
   return vr::Timeval{static_cast<std::uint32_t>(us / 1'000'000),
                      static_cast<std::uint32_t>(us % 1'000'000)};
+}
+
+vr::Timeval wall_clock() {
+  return timeval_of(wall_clock_us());
 }
 
 }  // namespace
@@ -130,9 +137,20 @@ class VrpnServer::Impl {
     return id;
   }
 
+  // A report is stamped with the wall-clock time of its frame's capture, as a server stamps its
+  // camera frames: the first frame's capture is "now", later ones follow their capture times
+  // (re-anchored when capture time goes back, a replay starting again).
+  vr::Timeval stamp(const core::MocapFrame& frame) {
+    const std::int64_t capture_us =
+        std::chrono::duration_cast<std::chrono::microseconds>(frame.capture_time.time_since_epoch())
+            .count();
+    if (!anchor_ || capture_us < anchor_->first) anchor_ = std::pair{capture_us, wall_clock_us()};
+    return timeval_of(anchor_->second + (capture_us - anchor_->first));
+  }
+
   void produce(const core::MocapFrame& frame) {
     ++counters_.frames;
-    const auto now = wall_clock();
+    const auto now = stamp(frame);
     const double dt = 1.0 / options_.rate_hz;
     for (const auto& body : frame.bodies) {
       if (!body.tracked || body.name.empty() || body.name.size() >= vr::kMaxNameBytes) continue;
@@ -252,6 +270,7 @@ class VrpnServer::Impl {
   std::set<ClientPtr> clients_;
   FrameProvider provider_;
   std::optional<TickSchedule> schedule_;
+  std::optional<std::pair<std::int64_t, std::int64_t>> anchor_;  // (capture µs, wall-clock µs)
   std::map<std::string, std::int32_t> senders_;
   std::vector<std::string> sender_order_{std::string(kControlSender)};
 };

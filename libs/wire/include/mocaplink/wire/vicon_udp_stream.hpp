@@ -7,7 +7,9 @@
 //     counted. Further back is a Tracker restart: numbering starts again from it.
 //   - A datagram with the newest frame number again (a frame split over several datagrams) gives
 //     the frame again with the objects of both, at the first one's capture time.
-//   - capture_time is the host arrival time (the stream has no time stamp), kept increasing.
+//   - capture_time is the host arrival time (the stream has no time stamp) smoothed by
+//     ArrivalClock with the frame-number step × the frame period learned from the stream itself
+//     (arrival span / frame-number span since the stream (re)started, once it spans 0.5 s).
 //   - An object is untracked when its six values are all 0.0 or have stayed bit-identical for more
 //     than `frozen` datagrams; absent objects are simply not in the frame.
 //   - Positions mm → m; rotation by the configured Euler order.
@@ -24,6 +26,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/time.hpp"
+#include "mocaplink/wire/arrival_clock.hpp"
 #include "mocaplink/wire/vicon_udp.hpp"
 
 namespace mocaplink::wire::vicon_udp {
@@ -69,7 +72,7 @@ class Stream {
     std::uint32_t repeats = 0;
   };
   core::BodySample sample(const Object& o);
-  core::SourceTime capture_at(core::HostTime host);
+  core::SourceTime capture_at(core::HostTime host, std::int64_t frames_since_last);
 
   StreamConfig config_;
   StreamCounters counters_;
@@ -77,7 +80,9 @@ class Stream {
   std::uint64_t unwrapped_ = 0;
   std::uint32_t step_ = 0;                   // 0 until a forward step was seen
   std::optional<core::MocapFrame> current_;  // the newest frame delivered
-  std::optional<core::SourceTime> last_capture_;
+  ArrivalClock clock_;
+  // The first frame of this run of the stream (frame number, arrival), for the frame period.
+  std::optional<std::pair<std::uint64_t, core::HostTime>> reference_;
   bool lost_sent_ = true;
   std::unordered_map<std::string, Seen> seen_;
   std::vector<std::string> names_;  // in order of first appearance

@@ -12,8 +12,8 @@
 //     every key of the previous round. Frames are numbered 1, 2, … by the assembler (host-time
 //     frames; MocapFrame::frame_step = 0 tells the Station that gaps mean nothing).
 //   - capture_time is the host arrival time of the round's first report (as a SourceTime with the
-//     host clock's epoch), kept strictly increasing; the header time (the server's wall clock)
-//     is only kept for diagnostics.
+//     host clock's epoch), smoothed by ArrivalClock with the step between the rounds' header
+//     times (the server's wall clock), so that reports read in one burst keep their spacing.
 //   - A body is in a frame when its tracker reported in the round; it is untracked when its pose
 //     has been bit-identical for `frozen_after` (a real body never holds six doubles still).
 //   - After `lost_after` without any report, one frame with every known body untracked goes out
@@ -34,6 +34,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/time.hpp"
+#include "mocaplink/wire/arrival_clock.hpp"
 #include "mocaplink/wire/vrpn_protocol.hpp"
 
 namespace mocaplink::wire::vrpn {
@@ -115,7 +116,7 @@ class FrameAssembler {
   };
   using Key = std::pair<std::string, std::int32_t>;
   core::MocapFrame close_round();
-  core::SourceTime next_capture(core::HostTime host);
+  core::SourceTime next_capture(core::HostTime host, std::optional<Timeval> stamp);
 
   AssemblerConfig config_;
   std::map<Key, std::size_t> index_;
@@ -124,8 +125,10 @@ class FrameAssembler {
   std::set<std::size_t> in_round_;
   std::set<std::size_t> previous_round_;
   std::optional<core::HostTime> round_start_;
+  std::optional<Timeval> round_stamp_;  // header time of the round's first report
+  std::optional<Timeval> last_stamp_;   // ... of the last frame's
+  ArrivalClock clock_;
   std::optional<core::HostTime> last_report_;
-  std::optional<core::SourceTime> last_capture_;
   bool lost_sent_ = true;  ///< nothing to report lost until a report came
   std::uint64_t next_frame_ = 1;
   std::uint64_t ignored_bodies_ = 0;

@@ -6,12 +6,13 @@
 // request is ignored); then the description burst of §4.1 (every sender: "VRPN Control" and each
 // body seen so far; every type: the tracker, base and connection types), then for every frame one
 // `vrpn_Tracker Pos_Quat` (sensor 0) and one `vrpn_Tracker Velocity` per tracked body, stamped with
-// this host's wall clock. A body appearing for the first time is described to every client then
-// (a tracker created while clients are connected); a body missing from a frame or untracked is
-// not reported (VRPN has no tracking flag), as a server whose tracker disappeared. Sender ids are
-// kept for the server's lifetime. Whatever a client sends after its cookie is read and ignored
-// (bounded: a message above 64 KiB closes it). A client that does not read is closed when its
-// queue holds more than `queue_messages` messages.
+// this host's wall clock at the frame's capture (the first frame's capture is "now"). A body
+// appearing for the first time is described to every client then (a tracker created while clients
+// are connected); a body missing from a frame or untracked is not reported (VRPN has no tracking
+// flag), as a server whose tracker disappeared. Sender ids are kept for the server's lifetime.
+// Whatever a client sends after its cookie is read and ignored (bounded: a message above 64 KiB
+// closes it). A client that does not read is closed when its queue holds more than `queue_messages`
+// messages.
 #pragma once
 
 #include <atomic>
