@@ -257,10 +257,11 @@ void run_record(const sources::SourceRegistry& sources, const std::string& url,
     exit_code.value = 2;
     return;
   }
-  std::fprintf(stderr, "mocaplink record: %llu frames (%llu dropped, %zu bodies) to %s\n",
-               static_cast<unsigned long long>(snapshot.frames),
-               static_cast<unsigned long long>(snapshot.dropped), snapshot.bodies.size(),
-               out_path.c_str());
+  const std::string dropped =
+      snapshot.drops_counted ? std::to_string(snapshot.dropped) : std::string("n/a");
+  std::fprintf(stderr, "mocaplink record: %llu frames (%s dropped, %zu bodies) to %s\n",
+               static_cast<unsigned long long>(snapshot.frames), dropped.c_str(),
+               snapshot.bodies.size(), out_path.c_str());
   if (snapshot.frames == 0) {
     std::fprintf(stderr, "mocaplink record: no frame arrived from %s%s\n", url.c_str(),
                  detail.empty() ? "" : (" (" + detail + ")").c_str());

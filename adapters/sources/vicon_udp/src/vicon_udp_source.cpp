@@ -126,16 +126,18 @@ class ViconUdpSource::Receiver {
   }
 
   void copy_counters() {
-    const vu::StreamCounters& c = stream_.counters();
-    auto& u = owner_.udp_counters_;
-    u.datagrams = c.datagrams;
-    u.late = c.late;
-    u.wraps = c.wraps;
-    u.restarts = c.restarts;
-    u.gaps = c.gaps;
-    u.split_frames = c.split_frames;
-    u.unknown_items = c.unknown_items;
-    u.untracked = c.untracked;
+    using S = vu::StreamCounters;
+    using U = ViconUdpCounters;
+    static constexpr std::array<std::pair<std::uint64_t S::*, std::atomic<std::uint64_t> U::*>, 8>
+        kCopied{{{&S::datagrams, &U::datagrams},
+                 {&S::late, &U::late},
+                 {&S::wraps, &U::wraps},
+                 {&S::restarts, &U::restarts},
+                 {&S::gaps, &U::gaps},
+                 {&S::split_frames, &U::split_frames},
+                 {&S::unknown_items, &U::unknown_items},
+                 {&S::untracked, &U::untracked}}};
+    for (const auto& [from, to] : kCopied) owner_.udp_counters_.*to = stream_.counters().*from;
   }
 
   ViconUdpSource& owner_;

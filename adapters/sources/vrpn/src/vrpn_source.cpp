@@ -166,6 +166,10 @@ class VrpnSource::Session {
       if (!on_message(link, header.value(), payload)) return false;
     }
     buf.erase(buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(at));
+    if (senders_changed_) {  // once per read: a description burst is one line
+      senders_changed_ = false;
+      report_state(SourceState::connected, "senders: " + join(owner_.trackers()));
+    }
     asio::error_code ignored;
     if (link->socket.available(ignored) == 0) deliver(assembler_.on_drained());
     return true;
@@ -185,13 +189,9 @@ class VrpnSource::Session {
     vr::MessageOutcome& out = outcome.value();
     if (out.unknown_id) ++owner_.vrpn_counters_.unknown_ids;
     if (!out.new_sender.empty()) {
-      std::vector<std::string> now;
-      {
-        const std::lock_guard lock(owner_.mutex_);
-        owner_.trackers_.push_back(out.new_sender);
-        now = owner_.trackers_;
-      }
-      report_state(SourceState::connected, "senders: " + join(now));
+      const std::lock_guard lock(owner_.mutex_);
+      owner_.trackers_.push_back(out.new_sender);
+      senders_changed_ = true;
     }
     if (!out.report) return true;
     if (!wanted(out.report->tracker)) {
@@ -273,6 +273,7 @@ class VrpnSource::Session {
   asio::steady_timer deadline_{io_}, silence_{io_}, idle_{io_}, retry_{io_};
   std::chrono::milliseconds backoff_ = opts_.backoff_initial;
   std::uint64_t opened_ = 0;
+  bool senders_changed_ = false;
 };
 
 VrpnSource::VrpnSource(VrpnSourceOptions options, std::string url)
