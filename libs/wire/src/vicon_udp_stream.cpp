@@ -7,14 +7,22 @@ namespace mocaplink::wire::vicon_udp {
 
 core::SourceTime Stream::capture_at(core::HostTime host, std::int64_t frames_since_last) {
   std::optional<core::Duration> step;
-  if (!reference_ || frames_since_last <= 0) {
-    reference_ = std::pair{unwrapped_, host};
-  } else if (host - reference_->second >= std::chrono::milliseconds(500) &&
-             unwrapped_ > reference_->first) {
-    const auto period =
-        (host - reference_->second) / static_cast<std::int64_t>(unwrapped_ - reference_->first);
-    step = period * frames_since_last;
+  if (last_arrival_ && frames_since_last > 0) {
+    // The frame period: the median of the recent arrival gaps per frame number, which a burst
+    // (some gaps near 0, one long) does not move.
+    gaps_.push_back((host - *last_arrival_) / frames_since_last);
+    if (gaps_.size() > kPeriodSamples) gaps_.pop_front();
+    if (gaps_.size() >= 3) {
+      std::vector<core::Duration> sorted(gaps_.begin(), gaps_.end());
+      std::nth_element(sorted.begin(),
+                       sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                       sorted.end());
+      step = sorted[sorted.size() / 2] * frames_since_last;
+    }
+  } else {
+    gaps_.clear();  // a new start: the period is measured again
   }
+  last_arrival_ = host;
   return clock_.next(host, step);
 }
 
@@ -109,7 +117,7 @@ std::optional<core::MocapFrame> Stream::on_silence(core::HostTime now) {
   frame.frame_number = current_->frame_number;
   frame.frame_step = current_->frame_step;
   frame.capture_time = clock_.next(now, std::nullopt);
-  reference_.reset();  // the period is measured again when the stream resumes
+  last_arrival_.reset();  // the period is measured again when the stream resumes
   for (const auto& name : names_) {
     core::BodySample s;
     s.name = name;

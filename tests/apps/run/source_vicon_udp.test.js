@@ -31,7 +31,24 @@ function serve(sceneFile, port) {
     '--to', `127.0.0.1:${port}`, '--set', 'frame_step=2']);
 }
 
+/// `serve` refuses a vicon-udp emulator without --to, and bad --set values, with exit 1.
+async function checkServeErrors() {
+  const cases = [
+    [['--from', 'sim'], '--to'],
+    [['--from', 'sim', '--to', '127.0.0.1:9', '--set', 'rotation=xzy'], 'rotation must be xyz or zyx'],
+    [['--from', 'sim', '--to', '127.0.0.1:9', '--set', 'frame_step=0'], 'frame_step'],
+    [['--from', 'sim', '--to', '127.0.0.1:9', '--set', 'rotaton=xyz'], 'rotaton'],
+  ];
+  for (const [args, message] of cases) {
+    const p = h.mocaplink(['serve', '--protocol', 'vicon-udp', ...args]);
+    const { code } = await p.exited;
+    assert.equal(code, 1, `serve ${args.join(' ')}: exit ${code}`);
+    assert.ok(p.stderr.includes(message), `serve ${args.join(' ')}: ${p.stderr}`);
+  }
+}
+
 async function main() {
+  await checkServeErrors();
   const dir = h.tempDir('vicon-udp');
   const sceneFile = path.join(dir, 'scene.csv');
   scene.writeScene(sceneFile, SECONDS);

@@ -9,7 +9,7 @@
 //     the frame again with the objects of both, at the first one's capture time.
 //   - capture_time is the host arrival time (the stream has no time stamp) smoothed by
 //     ArrivalClock with the frame-number step × the frame period learned from the stream itself
-//     (arrival span / frame-number span since the stream (re)started, once it spans 0.5 s).
+//     (the median arrival gap per frame number over the last 15 datagrams, from the 4th on).
 //   - An object is untracked when its six values are all 0.0 or have stayed bit-identical for more
 //     than `frozen` datagrams; absent objects are simply not in the frame.
 //   - Positions mm → m; rotation by the configured Euler order.
@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <span>
 #include <string>
@@ -81,8 +82,10 @@ class Stream {
   std::uint32_t step_ = 0;                   // 0 until a forward step was seen
   std::optional<core::MocapFrame> current_;  // the newest frame delivered
   ArrivalClock clock_;
-  // The first frame of this run of the stream (frame number, arrival), for the frame period.
-  std::optional<std::pair<std::uint64_t, core::HostTime>> reference_;
+  // Arrival gaps per frame number of the recent datagrams, for the frame period.
+  static constexpr std::size_t kPeriodSamples = 15;
+  std::deque<core::Duration> gaps_;
+  std::optional<core::HostTime> last_arrival_;
   bool lost_sent_ = true;
   std::unordered_map<std::string, Seen> seen_;
   std::vector<std::string> names_;  // in order of first appearance
