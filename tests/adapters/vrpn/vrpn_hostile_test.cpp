@@ -67,9 +67,8 @@ class ScriptedServer {
 
 std::vector<std::byte> cookie_then(std::vector<std::byte> rest) {
   const auto cookie = vr::make_cookie('0');
-  std::vector<std::byte> out(cookie.begin(), cookie.end());
-  out.insert(out.end(), rest.begin(), rest.end());
-  return out;
+  rest.insert(rest.begin(), cookie.begin(), cookie.end());
+  return rest;
 }
 
 std::vector<std::byte> header(std::uint32_t length) {
