@@ -154,7 +154,7 @@ nlohmann::json to_json(const std::string& url, SourceState state, const core::St
           {"latency_ms", optional_number(s.latency_ms)},
           {"jitter_ms", optional_number(s.jitter_ms)},
           {"frames", s.frames},
-          {"dropped", s.dropped},
+          {"dropped", s.drops_counted ? nlohmann::json(s.dropped) : nlohmann::json(nullptr)},
           {"bodies", std::move(bodies)}};
 }
 
@@ -171,7 +171,11 @@ std::string to_text(const std::string& url, SourceState state, const std::string
                                        : std::string());
   out += fmt::format("latency   {}   jitter {}\n", optional_ms(s.latency_ms),
                      optional_ms(s.jitter_ms));
-  out += fmt::format("frames    {}   dropped {}   restarts {}\n", s.frames, s.dropped, s.restarts);
+  out += s.drops_counted
+             ? fmt::format("frames    {}   dropped {}   restarts {}\n", s.frames, s.dropped,
+                           s.restarts)
+             : fmt::format("frames    {}   dropped n/a (no frame numbers from the source)\n",
+                           s.frames);
   out += fmt::format("{:<16} {:<7} {:>9} {:>9} {:>9} {:>9}  {:>7} {:>7} {:>7} {:>7}\n", "body",
                      "tracked", "frames", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz");
   for (const auto& b : s.bodies) {
@@ -253,10 +257,11 @@ void run_record(const sources::SourceRegistry& sources, const std::string& url,
     exit_code.value = 2;
     return;
   }
-  std::fprintf(stderr, "mocaplink record: %llu frames (%llu dropped, %zu bodies) to %s\n",
-               static_cast<unsigned long long>(snapshot.frames),
-               static_cast<unsigned long long>(snapshot.dropped), snapshot.bodies.size(),
-               out_path.c_str());
+  const std::string dropped =
+      snapshot.drops_counted ? std::to_string(snapshot.dropped) : std::string("n/a");
+  std::fprintf(stderr, "mocaplink record: %llu frames (%s dropped, %zu bodies) to %s\n",
+               static_cast<unsigned long long>(snapshot.frames), dropped.c_str(),
+               snapshot.bodies.size(), out_path.c_str());
   if (snapshot.frames == 0) {
     std::fprintf(stderr, "mocaplink record: no frame arrived from %s%s\n", url.c_str(),
                  detail.empty() ? "" : (" (" + detail + ")").c_str());

@@ -77,7 +77,7 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
   spdlog::info("{}source {}: {}, {} frames ({:.1f} Hz), {} dropped, {} queue overflows",
                final ? "final: " : "", config_.mocap.source.text,
                st.connected ? "connected" : "not connected", st.frames, st.frame_rate_hz,
-               st.dropped, queue_overflows);
+               st.drops_counted ? std::to_string(st.dropped) : std::string("n/a"), queue_overflows);
   const bool detailed = snapshot.vehicles.size() <= kDetailedVehicles;
   std::map<std::string, Previous> next;  // only live vehicles: removed ones are forgotten
   double min_hz = 0.0;

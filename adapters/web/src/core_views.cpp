@@ -35,6 +35,7 @@ StationView make_station_view(std::string source, const core::StationSnapshot& s
   view.jitter_ms = snapshot.jitter_ms;
   view.frames = snapshot.frames;
   view.dropped = snapshot.dropped;
+  view.drops_counted = snapshot.drops_counted;
   view.bodies.reserve(snapshot.bodies.size());
   for (const core::StationBody& body : snapshot.bodies) {
     view.bodies.push_back(make_body_view(body, estimate_of ? estimate_of(body.name) : nullptr));

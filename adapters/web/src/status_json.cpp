@@ -69,7 +69,8 @@ void to_json(nlohmann::json& j, const StationView& station) {
                      {"latency_ms", optional_json(station.latency_ms)},
                      {"jitter_ms", optional_json(station.jitter_ms)},
                      {"frames", station.frames},
-                     {"dropped", station.dropped},
+                     {"dropped", station.drops_counted ? nlohmann::json(station.dropped)
+                                                       : nlohmann::json(nullptr)},
                      {"bodies", station.bodies},
                      {"bridge_latency_ms", optional_json(station.bridge_latency_ms)}};
 }

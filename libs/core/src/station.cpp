@@ -13,15 +13,17 @@ void Station::on_connection(bool connected) {
   if (!connected) continuity_ = false;
 }
 
-void Station::count_frame_number(std::uint64_t n) {
-  if (continuity_ && totals_.last_frame_number) {
+void Station::count_frame_number(std::uint64_t n, std::uint32_t step) {
+  if (step == 0) {
+    totals_.drops_counted = false;
+  } else if (continuity_ && totals_.last_frame_number) {
     const std::uint64_t last = *totals_.last_frame_number;
     if (n == last) {
       ++totals_.duplicates;
     } else if (n < last || n - last - 1 > config_.max_gap_frames) {
       ++totals_.restarts;
     } else {
-      totals_.dropped += n - last - 1;
+      totals_.dropped += (n - last) / step - (n - last >= step ? 1 : 0);
     }
   }
   totals_.last_frame_number = n;
@@ -56,7 +58,7 @@ void Station::update_bodies(const MocapFrame& frame, HostTime received) {
 void Station::on_frame(const MocapFrame& frame, HostTime received) {
   connected_ = true;
   ++totals_.frames;
-  count_frame_number(frame.frame_number);
+  count_frame_number(frame.frame_number, frame.frame_step);
   if (frame.frame_rate_hz) totals_.nominal_rate_hz = frame.frame_rate_hz;
   totals_.last_received = received;
   update_bodies(frame, received);

@@ -22,8 +22,10 @@ bool opens(std::string_view url) {
 
 TEST(SourceRegistry, ListsTheBuiltInSourcesAndWhatCanBeServed) {
   const auto registry = builtin_sources();
-  EXPECT_EQ(registry.schemes(), (std::vector<std::string_view>{"qtm", "replay", "sim", "vicon"}));
-  EXPECT_EQ(registry.servable(), (std::vector<std::string_view>{"qtm", "vicon"}));
+  EXPECT_EQ(registry.schemes(),
+            (std::vector<std::string_view>{"qtm", "replay", "sim", "vicon", "vicon-udp", "vrpn"}));
+  EXPECT_EQ(registry.servable(),
+            (std::vector<std::string_view>{"qtm", "vicon", "vicon-udp", "vrpn"}));
   ASSERT_NE(registry.find("vicon"), nullptr);
   EXPECT_EQ(registry.find("vicon")->serve_port, 801);
   EXPECT_EQ(registry.find("natnet"), nullptr);
@@ -60,7 +62,7 @@ TEST(SourceRegistry, OneClearMessagePerBadUrl) {
   // In DESIGN.md but not built into this binary: refused like any unknown scheme, with what is
   // available.
   EXPECT_EQ(error_of("natnet://10.0.0.5"),
-            "unknown source scheme \"natnet\" (one of: qtm, replay, sim, vicon)");
+            "unknown source scheme \"natnet\" (one of: qtm, replay, sim, vicon, vicon-udp, vrpn)");
 }
 
 TEST(SourceRegistry, CheckAgreesWithOpen) {

@@ -84,6 +84,34 @@ TEST(Station, CounterRestartsAndDuplicatesAreNotDrops) {
   EXPECT_EQ(s.dropped, 1u);  // only 5001
 }
 
+TEST(Station, GapsAreCountedInFrameSteps) {
+  // A Vicon UDP stream at half the camera rate: numbers 2 apart, one frame (2 numbers) lost.
+  Station station;
+  for (int n : {10, 12, 14, 18, 20, 21}) {
+    MocapFrame f = make_frame(n);
+    f.frame_step = 2;
+    station.on_frame(f, host_ms(0));
+  }
+  const auto s = station.snapshot(host_ms(0));
+  EXPECT_EQ(s.dropped, 1u);  // 16; 21 after 20 is a short step, not a drop
+  EXPECT_TRUE(s.drops_counted);
+}
+
+TEST(Station, FramesNumberedByTheBridgeCountNoDrops) {
+  // VRPN: frame numbers are the source adapter's own (frame_step 0), gaps mean nothing.
+  Station station;
+  for (int n : {1, 5, 9}) {
+    MocapFrame f = make_frame(n);
+    f.frame_step = 0;
+    station.on_frame(f, host_ms(0));
+  }
+  const auto s = station.snapshot(host_ms(0));
+  EXPECT_EQ(s.dropped, 0u);
+  EXPECT_EQ(s.restarts, 0u);
+  EXPECT_FALSE(s.drops_counted);
+  EXPECT_EQ(s.frames, 3u);
+}
+
 TEST(Station, FramesMissedWhileDisconnectedAreNotDrops) {
   Station station;
   station.on_frame(make_frame(10), host_ms(0));

@@ -11,6 +11,7 @@
 
 #include <asio.hpp>
 
+#include "mocaplink/sources/emulator_support.hpp"
 #include "mocaplink/wire/vicon_packet.hpp"
 #include "mocaplink/wire/vicon_server_session.hpp"
 
@@ -43,22 +44,7 @@ class ViconServer::Impl {
       : options_(options), counters_(counters) {}
 
   std::optional<std::string> listen() {
-    asio::error_code ec;
-    const auto address = asio::ip::make_address(options_.listen_host, ec);
-    if (ec) return "bad listen address '" + options_.listen_host + "': " + ec.message();
-    const tcp::endpoint endpoint(address, options_.port);
-    if (acceptor_.open(endpoint.protocol(), ec); ec) return "socket: " + ec.message();
-    if (acceptor_.set_option(tcp::acceptor::reuse_address(true), ec); ec) {
-      return "SO_REUSEADDR: " + ec.message();
-    }
-    if (acceptor_.bind(endpoint, ec); ec) {
-      return "cannot listen on " + options_.listen_host + ":" + std::to_string(options_.port) +
-             ": " + ec.message();
-    }
-    if (acceptor_.listen(asio::socket_base::max_listen_connections, ec); ec) {
-      return "listen: " + ec.message();
-    }
-    return std::nullopt;
+    return listen_tcp(acceptor_, options_.listen_host, options_.port);
   }
 
   std::uint16_t bound_port() const { return acceptor_.local_endpoint().port(); }
@@ -68,7 +54,7 @@ class ViconServer::Impl {
     accept();
     keep_alive_tick();
     if (provider_) {
-      start_time_ = SteadyClock::now();
+      schedule_.emplace(options_.rate_hz, SteadyClock::now());
       schedule_tick();
     }
     io_.run();
@@ -100,23 +86,12 @@ class ViconServer::Impl {
   };
   using ConnectionPtr = std::shared_ptr<Connection>;
 
-  SteadyClock::duration period() const {
-    return std::chrono::duration_cast<SteadyClock::duration>(
-        std::chrono::duration<double>(1.0 / options_.rate_hz));
-  }
-
   void schedule_tick() {
-    tick_timer_.expires_at(start_time_ + period() * static_cast<std::int64_t>(tick_));
+    tick_timer_.expires_at(schedule_->due());
     tick_timer_.async_wait([this](const asio::error_code& ec) {
       if (ec) return;
-      if (auto frame = provider_(tick_)) produce(*frame);
-      ++tick_;
-      // After a stall, skip ahead (the skipped ticks are dropped frames) instead of bursting.
-      const auto behind =
-          SteadyClock::now() - (start_time_ + period() * static_cast<std::int64_t>(tick_));
-      if (behind > period() * 5) {
-        tick_ += static_cast<std::uint64_t>(behind / period());
-      }
+      if (auto frame = provider_(schedule_->tick())) produce(*frame);
+      schedule_->advance(SteadyClock::now());
       schedule_tick();
     });
   }
@@ -248,8 +223,7 @@ class ViconServer::Impl {
   asio::steady_timer keep_alive_timer_{io_};
   std::set<ConnectionPtr> connections_;
   FrameProvider provider_;
-  SteadyClock::time_point start_time_{};
-  std::uint64_t tick_ = 0;
+  std::optional<TickSchedule> schedule_;
   vw::ServedFrameBuilder builder_;
   std::shared_ptr<const vw::ServedFrame> latest_;
 };

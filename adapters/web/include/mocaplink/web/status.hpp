@@ -57,7 +57,8 @@ struct StationView {
   std::optional<double> jitter_ms{};        ///< std. dev. of receive − capture time
   std::uint64_t frames = 0;                 ///< frames received, cumulative
   std::uint64_t dropped = 0;                ///< frames missing from frame-number gaps, cumulative
-  std::vector<BodyView> bodies{};           ///< in order of first appearance
+  bool drops_counted = true;  ///< false: the source has no frame numbers (VRPN); `dropped` is null
+  std::vector<BodyView> bodies{};  ///< in order of first appearance
   /// The bridge's own latency (a frame received → the last datagram it caused sent), over the
   /// latest frames (core::LatencyWindow); null until a frame was bridged.
   std::optional<BridgeLatencyView> bridge_latency_ms{};

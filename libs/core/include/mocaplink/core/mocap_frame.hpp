@@ -26,9 +26,14 @@ struct BodySample {
   Eigen::Quaterniond q_world_body = Eigen::Quaterniond::Identity();
 };
 
-/// A whole frame. `frame_number` is the source's own counter (gaps = dropped frames).
+/// A whole frame. `frame_number` is the source's own counter (gaps = dropped frames, see
+/// frame_step).
 struct MocapFrame {
   std::uint64_t frame_number = 0;
+  /// How much frame_number grows from one frame to the next when none is lost (1 for most
+  /// sources; a Vicon UDP stream slower than the cameras skips numbers). 0: the numbers are the
+  /// bridge's own, given on arrival (VRPN has none), so gaps say nothing about lost frames.
+  std::uint32_t frame_step = 1;
   SourceTime capture_time{};               ///< capture time on the source's clock
   std::optional<double> frame_rate_hz;     ///< the source's nominal rate, when it says
   std::optional<Duration> source_latency;  ///< latency the source reports for this frame

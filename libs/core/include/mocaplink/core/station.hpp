@@ -15,6 +15,10 @@
 //                  max_gap_frames (a server restart: counted in restarts), a repeated number
 //                  (duplicates), and the frames missed while disconnected (on_connection(false)
 //                  resets the continuity; the outage shows as the connection state instead).
+//                  A gap is counted in units of the frame's frame_step (a Vicon UDP stream at half
+//                  the camera rate numbers its frames 2 apart). Frames numbered by the bridge
+//                  (frame_step 0: VRPN) are never counted; drops_counted is then false, and
+//                  `dropped`, `restarts` and `duplicates` say nothing.
 //   bodies         every body ever seen, in order of first appearance: tracked (in the latest
 //                  frame; a body absent from the latest frame is untracked), last tracked pose in
 //                  the source world frame, frames_tracked.
@@ -68,6 +72,8 @@ struct StationSnapshot {
   std::optional<double> jitter_ms;
   std::uint64_t frames = 0;
   std::uint64_t dropped = 0;
+  /// false once a frame came without source frame numbers (frame_step 0): `dropped` is unknown.
+  bool drops_counted = true;
   std::uint64_t restarts = 0;
   std::uint64_t duplicates = 0;
   std::uint64_t bodies_ignored = 0;
@@ -96,7 +102,7 @@ class Station {
     Duration receive_minus_capture;
     std::optional<Duration> latency;
   };
-  void count_frame_number(std::uint64_t frame_number);
+  void count_frame_number(std::uint64_t frame_number, std::uint32_t step);
   void update_bodies(const MocapFrame& frame, HostTime received);
 
   StationConfig config_;
