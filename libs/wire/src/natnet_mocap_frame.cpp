@@ -31,7 +31,8 @@ constexpr double kUnitTolerance = 0.01;
 
 // Motive's Y-up axes in z-up coordinates: a rotation of −90° about x.
 const Eigen::Quaterniond& z_to_y() {
-  static const Eigen::Quaterniond q(Eigen::AngleAxisd(-std::numbers::pi / 2.0, Eigen::Vector3d::UnitX()));
+  static const Eigen::Quaterniond q(
+      Eigen::AngleAxisd(-std::numbers::pi / 2.0, Eigen::Vector3d::UnitX()));
   return q;
 }
 

@@ -8,11 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <numbers>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -87,8 +87,10 @@ constexpr std::string_view kFrame30 =
     "0000000000c0800f000000000090880f0000000000000000000000";
 constexpr std::string_view kFrame41 =
     "0700a0006400000000000000000000000000000000000000010000002600000007000000cdcccc3dcdcc4c3e9a9999"
-    "3e0000000000000000000000000000803f6f12033a01000000000000000000000000000000000000000000000000000"
-    "00000000000000000000000000000000000000000000000000000000000294040420f0000000000c0800f0000000000"
+    "3e0000000000000000000000000000803f6f12033a0100000000000000000000000000000000000000000000000000"
+    "0"
+    "00000000000000000000000000000000000000000000000000000000000294040420f0000000000c0800f000000000"
+    "0"
     "90880f00000000000000000000000000000000000000";
 constexpr std::string_view kModel30 =
     "05002700010000000100000044726f6e65310007000000ffffffff00000000000000000000000000000000";
@@ -149,18 +151,18 @@ TEST(NatnetGolden, Frame41ParsesAndEncodesExactly) {
   EXPECT_EQ(nn::encode_frame(golden_frame(), {4, 1}), bytes);
   // Every version of the 4.x family our emulator serves round-trips through the parser.
   for (const nn::Version v : {nn::Version{3, 1}, nn::Version{4, 0}, nn::Version{4, 2}}) {
-    auto again = nn::parse_frame(split(nn::encode_frame(golden_frame(), v),
-                                       nn::MessageId::frame_of_data).payload, v);
+    auto again = nn::parse_frame(
+        split(nn::encode_frame(golden_frame(), v), nn::MessageId::frame_of_data).payload, v);
     ASSERT_TRUE(again.ok()) << v.to_string();
   }
 }
 
 TEST(NatnetGolden, ModelDefinitionsParseAndEncodeExactly) {
-  for (const auto& [text, version] : {std::pair{kModel30, nn::Version{3, 0}},
-                                      std::pair{kModel42, nn::Version{4, 2}}}) {
+  for (const auto& [text, version] :
+       {std::pair{kModel30, nn::Version{3, 0}}, std::pair{kModel42, nn::Version{4, 2}}}) {
     const auto bytes = hex(text);
-    auto defs = nn::parse_model_definitions(split(bytes, nn::MessageId::model_def).payload,
-                                            version);
+    auto defs =
+        nn::parse_model_definitions(split(bytes, nn::MessageId::model_def).payload, version);
     ASSERT_TRUE(defs.ok()) << defs.error().reason;
     ASSERT_EQ(defs.value().rigid_bodies.size(), 1u);
     const auto& rb = defs.value().rigid_bodies[0];
@@ -224,8 +226,7 @@ TEST(NatnetCapture, ModelDefinitionsMatchSampleClient) {
   EXPECT_EQ(rb.name, "RaceQuad");
   EXPECT_EQ(rb.id, 2);
   EXPECT_EQ(rb.parent_id, -1);
-  EXPECT_EQ(f2(rb.offset[0]) + "," + f2(rb.offset[1]) + "," + f2(rb.offset[2]),
-            "0.00,0.00,0.00");
+  EXPECT_EQ(f2(rb.offset[0]) + "," + f2(rb.offset[1]) + "," + f2(rb.offset[2]), "0.00,0.00,0.00");
   const std::vector<std::string> printed = {"0.16, 0.04, -0.03", "-0.03, 0.04, -0.02",
                                             "0.19, -0.03, 0.15", "-0.07, 0.00, 0.03",
                                             "-0.06, -0.03, -0.14"};
@@ -519,7 +520,8 @@ TEST(NatnetMapping, ZUpToMotiveYUp) {
   EXPECT_TRUE(nn::z_up_to_y_up(Eigen::Vector3d(1, 2, 3)).isApprox(Eigen::Vector3d(1, 3, -2)));
   // A yaw of 90° about z-up is a rotation of 90° about Motive's +y.
   const Eigen::Quaterniond yaw(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()));
-  const Eigen::Quaterniond expected(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY()));
+  const Eigen::Quaterniond expected(
+      Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY()));
   EXPECT_TRUE(nn::z_up_to_y_up(yaw).isApprox(expected, 1e-12));
 }
 

@@ -86,15 +86,17 @@ struct Packet {
 [[nodiscard]] Result<Packet> split_packet(std::span<const std::byte> datagram);
 
 /// A whole packet: header (id, payload length) + payload. The payload must be < 65 536 bytes.
-[[nodiscard]] std::vector<std::byte> encode_packet(MessageId id, std::span<const std::byte> payload);
+[[nodiscard]] std::vector<std::byte> encode_packet(MessageId id,
+                                                   std::span<const std::byte> payload);
 /// A packet with an empty payload (keep-alive, model-definition request, disconnect, …).
 [[nodiscard]] std::vector<std::byte> encode_empty(MessageId id);
 
-// --- connect / server info (§2.1, §2.2) -----------------------------------------------------------
+// --- connect / server info (§2.1, §2.2)
+// -----------------------------------------------------------
 
 struct SenderInfo {
-  std::string name;                            ///< ≤ 255 bytes on the wire
-  std::array<std::uint8_t, 4> app_version{};   ///< major, minor, build, revision
+  std::string name;                           ///< ≤ 255 bytes on the wire
+  std::array<std::uint8_t, 4> app_version{};  ///< major, minor, build, revision
   std::array<std::uint8_t, 4> natnet_version{};
 };
 
@@ -110,7 +112,7 @@ struct ConnectRequest {
 [[nodiscard]] std::vector<std::byte> encode_connect(const ConnectRequest& request);
 
 struct ServerInfo {
-  SenderInfo sender;  ///< natnet_version bytes 0–1 are the bitstream version
+  SenderInfo sender;                 ///< natnet_version bytes 0–1 are the bitstream version
   bool has_connection_info = false;  ///< the 3.0+ fields below were present
   std::uint64_t clock_hz = 0;        ///< high-resolution clock, ticks per second
   std::uint16_t data_port = kDefaultDataPort;
@@ -127,7 +129,8 @@ struct ServerInfo {
 /// NAT_SERVERINFO packet; the 279-byte form when has_connection_info.
 [[nodiscard]] std::vector<std::byte> encode_server_info(const ServerInfo& info);
 
-// --- requests, responses, echo (§2.3, §2.5) -------------------------------------------------------
+// --- requests, responses, echo (§2.3, §2.5)
+// -------------------------------------------------------
 
 /// NAT_REQUEST / NAT_MESSAGESTRING payload: one NUL-terminated string filling the payload.
 [[nodiscard]] Result<std::string> parse_string_payload(std::span<const std::byte> payload);
@@ -141,7 +144,8 @@ struct EchoResponse {
 [[nodiscard]] Result<std::uint64_t> parse_echo_request(std::span<const std::byte> payload);
 [[nodiscard]] std::vector<std::byte> encode_echo_response(const EchoResponse& echo);
 
-// --- model definitions (§3) -----------------------------------------------------------------------
+// --- model definitions (§3)
+// -----------------------------------------------------------------------
 
 struct RigidBodyDescription {
   std::string name;
@@ -149,9 +153,9 @@ struct RigidBodyDescription {
   std::int32_t parent_id = -1;
   std::array<float, 3> offset{};
   std::array<float, 4> quat_offset{0.0f, 0.0f, 0.0f, 1.0f};  ///< qx, qy, qz, qw (4.2+)
-  std::vector<std::array<float, 3>> marker_positions;         ///< 3.0+
-  std::vector<std::int32_t> marker_labels;                    ///< 3.0+, same count
-  std::vector<std::string> marker_names;                      ///< 4.0+, same count
+  std::vector<std::array<float, 3>> marker_positions;        ///< 3.0+
+  std::vector<std::int32_t> marker_labels;                   ///< 3.0+, same count
+  std::vector<std::string> marker_names;                     ///< 4.0+, same count
 };
 
 struct MarkerSetDescription {
@@ -162,23 +166,24 @@ struct MarkerSetDescription {
 struct ModelDefinitions {
   std::vector<RigidBodyDescription> rigid_bodies;  ///< type-1 datasets only (§3.4)
   std::vector<MarkerSetDescription> marker_sets;
-  std::size_t other_datasets = 0;   ///< skeletons, force plates, devices, cameras, assets
+  std::size_t other_datasets = 0;    ///< skeletons, force plates, devices, cameras, assets
   std::size_t unknown_datasets = 0;  ///< 4.1+: skipped by size
-  std::size_t size_mismatches = 0;  ///< 4.1+: size_bytes disagreed with the parse (size trusted)
+  std::size_t size_mismatches = 0;   ///< 4.1+: size_bytes disagreed with the parse (size trusted)
 };
 
 /// NAT_MODELDEF payload in bitstream `v`. Before 4.1 an unknown type is an error.
 [[nodiscard]] Result<ModelDefinitions> parse_model_definitions(std::span<const std::byte> payload,
-                                                              Version v);
+                                                               Version v);
 /// NAT_MODELDEF packet with these marker sets and rigid bodies (marker sets first).
 [[nodiscard]] std::vector<std::byte> encode_model_definitions(const ModelDefinitions& defs,
                                                               Version v);
 
-// --- frame of data (§4) ---------------------------------------------------------------------------
+// --- frame of data (§4)
+// ---------------------------------------------------------------------------
 
 struct RigidBodySample {
   std::int32_t id = 0;
-  std::array<float, 3> position{};                      ///< m, server world
+  std::array<float, 3> position{};                           ///< m, server world
   std::array<float, 4> orientation{0.0f, 0.0f, 0.0f, 1.0f};  ///< qx, qy, qz, qw
   float mean_error = 0.0f;
   std::int16_t params = 0;  ///< bit 0 = tracking valid (2.6+; always valid before)
@@ -212,7 +217,7 @@ struct FrameOfData {
   std::uint32_t timecode = 0;
   std::uint32_t timecode_subframe = 0;
   double timestamp_s = 0.0;
-  std::uint64_t mid_exposure_ticks = 0;  ///< 3.0+
+  std::uint64_t mid_exposure_ticks = 0;   ///< 3.0+
   std::uint64_t data_received_ticks = 0;  ///< 3.0+
   std::uint64_t transmit_ticks = 0;       ///< 3.0+
   std::uint32_t precision_s = 0;          ///< 4.1+
