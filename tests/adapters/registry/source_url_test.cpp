@@ -118,9 +118,10 @@ TEST(SourceUrl, ErrorsSayWhatIsWrong) {
             "\"192.168.1.3\" is not a source URL; expected SCHEME://..., where SCHEME is one of "
             "replay, sim, vicon");
   EXPECT_EQ(error("optitrack://x"),
-            "unknown source scheme \"optitrack\" (one of: replay, sim, vicon)");
+            "unknown source scheme \"optitrack\" (one of: natnet, replay, sim, vicon)");
   EXPECT_EQ(error("vicn://x"),
-            "unknown source scheme \"vicn\"; did you mean \"vicon\"? (one of: replay, sim, vicon)");
+            "unknown source scheme \"vicn\"; did you mean \"vicon\"? (one of: natnet, replay, sim, "
+            "vicon)");
   EXPECT_EQ(error("vicon://h?mod=push"),
             "unknown option \"mod\" for vicon://; did you mean \"mode\"? (options: mode)");
   EXPECT_EQ(error("vicon://h?mode=fast"), "mode must be push, prefetch or pull, got \"fast\"");

@@ -132,7 +132,15 @@ class NatnetSource::Session {
                                     // trying.
                                     return receive(r);
                                   }
-                                  on_datagram(std::span<const std::byte>(r.buffer.data(), n));
+                                  // The command socket hears only the server: its port may have
+                                  // belonged to another
+                                  // program's client a moment ago, whose unicast server still
+                                  // streams to it.
+                                  if (&r == &cmd_ && server_ && r.from != *server_) {
+                                    ++owner_.natnet_counters_.foreign_datagrams;
+                                  } else {
+                                    on_datagram(std::span<const std::byte>(r.buffer.data(), n));
+                                  }
                                   if (gen == generation_) receive(r);
                                 });
   }
@@ -281,6 +289,9 @@ class NatnetSource::Session {
       request_models(false);  // §3.4: a body added since the last reload
     }
     owner_.natnet_counters_.invalid_poses += mapped.invalid_poses;
+    // Every body unknown (the models were requested before Motive had them): nothing to deliver
+    // yet; a frame that really has no rigid body is delivered.
+    if (mapped.frame.bodies.empty() && !f.rigid_bodies.empty()) return;
     if (last_frame_ && last_timestamp_ && f.frame_number > *last_frame_) {
       const double dt = f.timestamp_s - *last_timestamp_;
       const auto frames = static_cast<double>(f.frame_number - *last_frame_);

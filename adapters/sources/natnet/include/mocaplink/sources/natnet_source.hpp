@@ -54,7 +54,8 @@ struct NatnetCounters {
   std::atomic<std::uint64_t> frames_before_models{0};  ///< frames dropped: no model defs yet
   std::atomic<std::uint64_t> trailing_bytes{0};        ///< datagrams longer than their header says
   std::atomic<std::uint64_t> keep_alives{0};
-  std::atomic<std::uint64_t> timeouts{0};  ///< connections dropped for silence
+  std::atomic<std::uint64_t> foreign_datagrams{0};  ///< on the command socket, not from the server
+  std::atomic<std::uint64_t> timeouts{0};           ///< connections dropped for silence
 };
 
 class NatnetSource final : public Source {
