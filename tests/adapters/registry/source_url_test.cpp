@@ -116,7 +116,7 @@ TEST(SourceUrl, EverySimAndReplayOptionTheSourcesTake) {
 TEST(SourceUrl, ErrorsSayWhatIsWrong) {
   EXPECT_EQ(error("192.168.1.3"),
             "\"192.168.1.3\" is not a source URL; expected SCHEME://..., where SCHEME is one of "
-            "replay, sim, vicon");
+            "natnet, replay, sim, vicon");
   EXPECT_EQ(error("optitrack://x"),
             "unknown source scheme \"optitrack\" (one of: natnet, replay, sim, vicon)");
   EXPECT_EQ(error("vicn://x"),

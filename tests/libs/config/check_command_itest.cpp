@@ -95,7 +95,7 @@ profile = "px4"
   EXPECT_EQ(run.stdout_text, "");
   EXPECT_EQ(run.stderr_text, path +
                                  ":2:10: mocap.source: unknown source scheme \"qtm\" (one of: "
-                                 "replay, sim, vicon)\n" +
+                                 "natnet, replay, sim, vicon)\n" +
                                  path + ": 1 error\n");
 }
 

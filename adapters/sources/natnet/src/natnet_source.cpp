@@ -147,8 +147,8 @@ class NatnetSource::Session {
 
   void malformed(const std::string& what, const wire::ParseError& e) {
     ++owner_.counters_.malformed;
-    owner_.set_last_error("malformed " + what + " at byte " + std::to_string(e.offset) + ": " +
-                          e.reason);
+    owner_.last_error_.set("malformed " + what + " at byte " + std::to_string(e.offset) + ": " +
+                           e.reason);
   }
 
   void on_datagram(std::span<const std::byte> bytes) {
@@ -235,8 +235,8 @@ class NatnetSource::Session {
       asio::error_code ignored;
       data_.socket.close(ignored);
       if (multicast_) return "data port " + std::to_string(port) + ": " + ec.message();
-      owner_.set_last_error("unicast data port " + std::to_string(port) + ": " + ec.message() +
-                            " (frames are read on the command socket)");
+      owner_.last_error_.set("unicast data port " + std::to_string(port) + ": " + ec.message() +
+                             " (frames are read on the command socket)");
       return std::nullopt;
     }
     receive(data_);
@@ -258,8 +258,8 @@ class NatnetSource::Session {
     table_ = nn::body_table(defs.value());
     ++owner_.natnet_counters_.model_reloads;
     if (!table_->ambiguous.empty()) {
-      owner_.set_last_error("rigid-body name \"" + *table_->ambiguous.begin() +
-                            "\" is used by two ids in Motive: its bodies are ignored");
+      owner_.last_error_.set("rigid-body name \"" + *table_->ambiguous.begin() +
+                             "\" is used by two ids in Motive: its bodies are ignored");
     }
     set_state(SourceState::connected, detail_);
   }
@@ -348,7 +348,7 @@ class NatnetSource::Session {
   // table and frame numbers all come fresh from the next connection.
   void fail(const std::string& reason, bool is_malformed) {
     if (is_malformed) ++owner_.counters_.malformed;
-    owner_.set_last_error(reason);
+    owner_.last_error_.set(reason);
     if (server_ && cmd_.socket.is_open() && !multicast_) {
       send(nn::encode_empty(nn::MessageId::disconnect));
     }
@@ -405,27 +405,11 @@ NatnetSource::~NatnetSource() {
 }
 
 void NatnetSource::start(FrameSink on_frame, StateSink on_state) {
-  if (started_) return;
-  started_ = true;
-  session_ = std::make_unique<Session>(*this, std::move(on_frame), std::move(on_state));
-  thread_ = std::thread([this] { session_->run(); });
+  thread_.start(*this, std::move(on_frame), std::move(on_state));
 }
 
 void NatnetSource::stop() {
-  if (!session_) return;
-  session_->stop();
-  if (thread_.joinable()) thread_.join();
-  session_.reset();
-}
-
-std::string NatnetSource::last_error() const {
-  std::lock_guard lock(error_mutex_);
-  return last_error_;
-}
-
-void NatnetSource::set_last_error(std::string error) {
-  std::lock_guard lock(error_mutex_);
-  last_error_ = std::move(error);
+  thread_.stop();
 }
 
 }  // namespace mocaplink::sources

@@ -21,13 +21,11 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/natnet_options.hpp"
+#include "mocaplink/sources/session_thread.hpp"
 #include "mocaplink/sources/source.hpp"
 
 namespace mocaplink::sources {
@@ -71,22 +69,18 @@ class NatnetSource final : public Source {
   [[nodiscard]] const SourceCounters& counters() const override { return counters_; }
   [[nodiscard]] const NatnetCounters& natnet_counters() const { return natnet_counters_; }
   /// The most recent connection error or dropped-datagram reason ("" if none); any thread.
-  [[nodiscard]] std::string last_error() const;
+  [[nodiscard]] std::string last_error() const { return last_error_.get(); }
 
  private:
   class Session;  // Asio state, lives on the client thread (natnet_source.cpp)
   friend class Session;
-  void set_last_error(std::string error);
 
   NatnetSourceOptions options_;
   std::string url_;
   SourceCounters counters_;
   NatnetCounters natnet_counters_;
-  mutable std::mutex error_mutex_;
-  std::string last_error_;  // guarded by error_mutex_
-  std::unique_ptr<Session> session_;
-  std::thread thread_;
-  bool started_ = false;
+  LastError last_error_;
+  SessionThread<Session> thread_;  // last: stopped before the state its session uses
 };
 
 /// natnet:// for the source registry: parse_natnet_options, a NatnetSource, the Y-up reminder and
