@@ -36,8 +36,8 @@ class NatnetSource::Session {
       : owner_(owner),
         opts_(owner.options_),
         on_frame_(std::move(on_frame)),
-        on_state_(std::move(on_state)),
-        backoff_(opts_.backoff_initial) {}
+        state_(std::move(on_state)),
+        backoff_(opts_.backoff_initial, opts_.backoff_max) {}
 
   void run() {
     asio::post(io_, [this] { connect(); });
@@ -61,12 +61,6 @@ class NatnetSource::Session {
     std::vector<std::byte> buffer = std::vector<std::byte>(nn::kMaxDatagramBytes);
   };
 
-  void set_state(SourceState s, const std::string& detail) {
-    if (s == state_ && s != SourceState::disconnected) return;
-    state_ = s;
-    if (on_state_) on_state_(s, detail);
-  }
-
   udp::endpoint local_endpoint(std::uint16_t port) const {
     asio::error_code ec;
     const auto address = opts_.target.local.empty()
@@ -78,8 +72,8 @@ class NatnetSource::Session {
   void connect() {
     ++generation_;
     if (attempts_++ > 0) ++owner_.counters_.reconnects;
-    set_state(SourceState::connecting,
-              opts_.target.host + ":" + std::to_string(opts_.target.command_port));
+    state_.set(SourceState::connecting,
+               opts_.target.host + ":" + std::to_string(opts_.target.command_port));
     const auto gen = generation_;
     silence_timer_.expires_after(opts_.silence_timeout);
     silence_timer_.async_wait([this, gen](const asio::error_code& ec) {
@@ -188,7 +182,7 @@ class NatnetSource::Session {
     }
     if (!first) return;
     connect_timer_.cancel();
-    backoff_ = opts_.backoff_initial;
+    backoff_.reset();
     ++owner_.natnet_counters_.connections;
     multicast_ = opts_.target.transport == NatnetTransport::automatic
                      ? (!info.has_connection_info || info.multicast)
@@ -261,7 +255,7 @@ class NatnetSource::Session {
       owner_.last_error_.set("rigid-body name \"" + *table_->ambiguous.begin() +
                              "\" is used by two ids in Motive: its bodies are ignored");
     }
-    set_state(SourceState::connected, detail_);
+    state_.set(SourceState::connected, detail_);
   }
 
   void on_frame(std::span<const std::byte> payload) {
@@ -361,9 +355,8 @@ class NatnetSource::Session {
     connect_timer_.cancel();
     silence_timer_.cancel();
     keep_alive_timer_.cancel();
-    set_state(SourceState::disconnected, reason);
-    retry_timer_.expires_after(backoff_);
-    backoff_ = std::min(backoff_ * 2, opts_.backoff_max);
+    state_.set(SourceState::disconnected, reason);
+    retry_timer_.expires_after(backoff_.next());
     retry_timer_.async_wait([this](const asio::error_code& ec) {
       if (!ec) connect();
     });
@@ -372,7 +365,7 @@ class NatnetSource::Session {
   NatnetSource& owner_;
   const NatnetSourceOptions& opts_;
   FrameSink on_frame_;
-  StateSink on_state_;
+  StateReporter state_;
   asio::io_context io_;  // first: destroyed after the sockets and timers that use it
   udp::resolver resolver_{io_};
   Receiver cmd_{io_};
@@ -393,8 +386,7 @@ class NatnetSource::Session {
   SteadyClock::time_point last_revalidate_{};
   std::uint64_t generation_ = 0;
   std::uint64_t attempts_ = 0;
-  std::chrono::milliseconds backoff_;
-  SourceState state_ = SourceState::disconnected;
+  Backoff backoff_;
 };
 
 NatnetSource::NatnetSource(NatnetSourceOptions options, std::string url)
