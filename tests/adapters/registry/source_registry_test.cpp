@@ -23,12 +23,15 @@ bool opens(std::string_view url) {
 TEST(SourceRegistry, ListsTheBuiltInSourcesAndWhatCanBeServed) {
   const auto registry = builtin_sources();
   EXPECT_EQ(registry.schemes(),
-            (std::vector<std::string_view>{"qtm", "replay", "sim", "vicon", "vicon-udp", "vrpn"}));
+            (std::vector<std::string_view>{"natnet", "qtm", "replay", "sim", "vicon", "vicon-udp",
+                                            "vrpn"}));
   EXPECT_EQ(registry.servable(),
-            (std::vector<std::string_view>{"qtm", "vicon", "vicon-udp", "vrpn"}));
+            (std::vector<std::string_view>{"natnet", "qtm", "vicon", "vicon-udp", "vrpn"}));
   ASSERT_NE(registry.find("vicon"), nullptr);
   EXPECT_EQ(registry.find("vicon")->serve_port, 801);
-  EXPECT_EQ(registry.find("natnet"), nullptr);
+  ASSERT_NE(registry.find("natnet"), nullptr);
+  EXPECT_EQ(registry.find("natnet")->serve_port, 1510);
+  EXPECT_EQ(registry.find("optitrack"), nullptr);
 }
 
 TEST(SourceRegistry, OpensSimReplayAndVicon) {
@@ -59,15 +62,30 @@ TEST(SourceRegistry, OneClearMessagePerBadUrl) {
   EXPECT_NE(error_of("replay://x.csv?speed=-2").find("speed must be a number from 0 to 1000"),
             std::string::npos);
   EXPECT_NE(error_of("ftp://x").find("unknown source scheme \"ftp\""), std::string::npos);
-  // In DESIGN.md but not built into this binary: refused like any unknown scheme, with what is
-  // available.
-  EXPECT_EQ(error_of("natnet://10.0.0.5"),
-            "unknown source scheme \"natnet\" (one of: qtm, replay, sim, vicon, vicon-udp, vrpn)");
+  // Not built into this binary: refused like any unknown scheme, with what is available.
+  EXPECT_EQ(error_of("optitrack://10.0.0.5"),
+            "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)");
+  // natnet:// options (natnet_options.cpp), one message each.
+  EXPECT_TRUE(opens("natnet://10.0.0.5"));
+  EXPECT_TRUE(
+      opens("natnet://motive.lab:1510?local=10.0.0.2&multicast=239.255.42.99&data_port="
+            "1511&transport=unicast"));
+  EXPECT_EQ(error_of("natnet://10.0.0.5?multicast=10.0.0.1"),
+            "multicast must be an IPv4 multicast group (224.0.0.0 to 239.255.255.255), got "
+            "\"10.0.0.1\"");
+  EXPECT_EQ(error_of("natnet://10.0.0.5?local=eth0"),
+            "local must be the IPv4 address of a local interface, got \"eth0\"");
+  EXPECT_EQ(error_of("natnet://10.0.0.5?transport=tcp"),
+            "transport must be auto, multicast or unicast, got \"tcp\"");
+  EXPECT_NE(error_of("natnet://10.0.0.5?data_port=0").find("data_port must be"), std::string::npos);
+  EXPECT_NE(error_of("natnet://10.0.0.5?multicst=239.1.1.1").find("did you mean \"multicast\""),
+            std::string::npos);
+  EXPECT_NE(error_of("natnet://10.0.0.5/x").find("takes no path"), std::string::npos);
 }
 
 TEST(SourceRegistry, CheckAgreesWithOpen) {
   const auto registry = builtin_sources();
-  for (const char* url : {"sim://?bodys=3", "natnet://10.0.0.5", "vicon://h?mode=fast", "x",
+  for (const char* url : {"sim://?bodys=3", "optitrack://10.0.0.5", "vicon://h?mode=fast", "x",
                           "vicon://h:0", "replay://?speed=2"}) {
     EXPECT_EQ(registry.check(url).error, error_of(url)) << url;
   }
@@ -75,7 +93,16 @@ TEST(SourceRegistry, CheckAgreesWithOpen) {
   EXPECT_EQ(registry.check("replay://not-opened-by-check.csv").error, "");
 }
 
-// A source's configuration warnings (the hook a NatNet source will use: Motive streams Y-up) reach
+// NatNet reminds a user who kept the Z-up default that Motive streams Y-up.
+TEST(SourceRegistry, NatnetWarnsWhenUpIsNotWritten) {
+  const auto registry = builtin_sources();
+  const auto warned = registry.check("natnet://10.0.0.5", config::SourceContext{false});
+  ASSERT_EQ(warned.warnings.size(), 1u);
+  EXPECT_NE(warned.warnings[0].find("Motive streams Y-up"), std::string::npos);
+  EXPECT_TRUE(registry.check("natnet://10.0.0.5", config::SourceContext{true}).warnings.empty());
+}
+
+// A source's configuration warnings (the hook the NatNet source uses: Motive streams Y-up) reach
 // `check` and `run` through the validator, at the [mocap] source key, only when [mocap] up is not
 // written.
 TEST(SourceRegistry, ASourcesConfigWarningsReachTheConfigChecker) {

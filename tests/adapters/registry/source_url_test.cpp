@@ -116,12 +116,12 @@ TEST(SourceUrl, EverySimAndReplayOptionTheSourcesTake) {
 TEST(SourceUrl, ErrorsSayWhatIsWrong) {
   EXPECT_EQ(error("192.168.1.3"),
             "\"192.168.1.3\" is not a source URL; expected SCHEME://..., where SCHEME is one of "
-            "qtm, replay, sim, vicon, vicon-udp, vrpn");
+            "natnet, qtm, replay, sim, vicon, vicon-udp, vrpn");
   EXPECT_EQ(error("optitrack://x"),
-            "unknown source scheme \"optitrack\" (one of: qtm, replay, sim, vicon, vicon-udp, vrpn)");
+            "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)");
   EXPECT_EQ(error("vicn://x"),
-            "unknown source scheme \"vicn\"; did you mean \"vicon\"? (one of: qtm, replay, sim, "
-            "vicon, vicon-udp, vrpn)");
+            "unknown source scheme \"vicn\"; did you mean \"vicon\"? (one of: natnet, qtm, "
+            "replay, sim, vicon, vicon-udp, vrpn)");
   EXPECT_EQ(error("vicon://h?mod=push"),
             "unknown option \"mod\" for vicon://; did you mean \"mode\"? (options: mode)");
   EXPECT_EQ(error("vicon://h?mode=fast"), "mode must be push, prefetch or pull, got \"fast\"");

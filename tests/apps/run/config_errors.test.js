@@ -23,17 +23,17 @@ async function main() {
       text: `[mocap]\nsource = "bogus://x"\n[[vehicle]]\nname = "q"\nbody = "Body1"\n` +
         'link = "udp://255.255.255.255:14540"\nsystem_id = 0\n',
       expected: [
-        'many.toml:2:10: mocap.source: unknown source scheme "bogus" (one of: qtm, replay, sim, vicon, vicon-udp, vrpn)',
+        'many.toml:2:10: mocap.source: unknown source scheme "bogus" (one of: natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)',
         'many.toml:3:1: vehicle[1].profile: missing required key',
         'many.toml:6:8: vehicle[1].link: broadcast and multicast addresses are not allowed: pose ' +
           'messages have no target system, so every vehicle listening would fuse them; give ' +
           'each vehicle its own unicast address',
         'many.toml:7:13: vehicle[1].system_id: must be an integer from 1 to 255, got 0',
         'mocaplink run: 4 errors in the configuration (many.toml); nothing was sent'] },
-    // A source in DESIGN.md but not built in: refused exactly as `check` refuses it.
-    { name: 'natnet.toml', text: good.replace('sim://', 'natnet://10.0.0.5'), expected: [
-      'natnet.toml:2:10: mocap.source: unknown source scheme "natnet" (one of: qtm, replay, sim, vicon, vicon-udp, vrpn)',
-      'mocaplink run: 1 error in the configuration (natnet.toml); nothing was sent'] },
+    // A source not built in: refused exactly as `check` refuses it.
+    { name: 'optitrack.toml', text: good.replace('sim://', 'optitrack://10.0.0.5'), expected: [
+      'optitrack.toml:2:10: mocap.source: unknown source scheme "optitrack" (one of: natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)',
+      'mocaplink run: 1 error in the configuration (optitrack.toml); nothing was sent'] },
     { name: 'syntax.toml', text: '[mocap\n', expected: [
       "syntax.toml:1:7: TOML syntax error: Error while parsing table header: expected ']', saw '\\n'",
       'mocaplink run: 1 error in the configuration (syntax.toml); nothing was sent'] },

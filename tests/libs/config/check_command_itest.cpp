@@ -94,8 +94,8 @@ profile = "px4"
   EXPECT_EQ(run.exit_code, 1) << run.stderr_text;
   EXPECT_EQ(run.stdout_text, "");
   EXPECT_EQ(run.stderr_text, path +
-                                 ":2:10: mocap.source: unknown source scheme \"optitrack\" (one of: "
-                                 "qtm, replay, sim, vicon, vicon-udp, vrpn)\n" +
+                                 ":2:10: mocap.source: unknown source scheme \"qtm\" (one of: "
+                                 "natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)\n" +
                                  path + ": 1 error\n");
 }
 
