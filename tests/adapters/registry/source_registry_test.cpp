@@ -22,9 +22,8 @@ bool opens(std::string_view url) {
 
 TEST(SourceRegistry, ListsTheBuiltInSourcesAndWhatCanBeServed) {
   const auto registry = builtin_sources();
-  EXPECT_EQ(registry.schemes(),
-            (std::vector<std::string_view>{"natnet", "qtm", "replay", "sim", "vicon", "vicon-udp",
-                                            "vrpn"}));
+  EXPECT_EQ(registry.schemes(), (std::vector<std::string_view>{"natnet", "qtm", "replay", "sim",
+                                                               "vicon", "vicon-udp", "vrpn"}));
   EXPECT_EQ(registry.servable(),
             (std::vector<std::string_view>{"natnet", "qtm", "vicon", "vicon-udp", "vrpn"}));
   ASSERT_NE(registry.find("vicon"), nullptr);
@@ -64,7 +63,8 @@ TEST(SourceRegistry, OneClearMessagePerBadUrl) {
   EXPECT_NE(error_of("ftp://x").find("unknown source scheme \"ftp\""), std::string::npos);
   // Not built into this binary: refused like any unknown scheme, with what is available.
   EXPECT_EQ(error_of("optitrack://10.0.0.5"),
-            "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)");
+            "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, "
+            "vicon-udp, vrpn)");
   // natnet:// options (natnet_options.cpp), one message each.
   EXPECT_TRUE(opens("natnet://10.0.0.5"));
   EXPECT_TRUE(

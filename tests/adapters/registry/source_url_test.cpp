@@ -118,7 +118,8 @@ TEST(SourceUrl, ErrorsSayWhatIsWrong) {
             "\"192.168.1.3\" is not a source URL; expected SCHEME://..., where SCHEME is one of "
             "natnet, qtm, replay, sim, vicon, vicon-udp, vrpn");
   EXPECT_EQ(error("optitrack://x"),
-            "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)");
+            "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, "
+            "vicon-udp, vrpn)");
   EXPECT_EQ(error("vicn://x"),
             "unknown source scheme \"vicn\"; did you mean \"vicon\"? (one of: natnet, qtm, "
             "replay, sim, vicon, vicon-udp, vrpn)");

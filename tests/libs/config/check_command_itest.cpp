@@ -93,10 +93,11 @@ profile = "px4"
   std::filesystem::remove(path);
   EXPECT_EQ(run.exit_code, 1) << run.stderr_text;
   EXPECT_EQ(run.stdout_text, "");
-  EXPECT_EQ(run.stderr_text, path +
-                                 ":2:10: mocap.source: unknown source scheme \"qtm\" (one of: "
-                                 "natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)\n" +
-                                 path + ": 1 error\n");
+  EXPECT_EQ(run.stderr_text,
+            path +
+                ":2:10: mocap.source: unknown source scheme \"optitrack\" (one of: "
+                "natnet, qtm, replay, sim, vicon, vicon-udp, vrpn)\n" +
+                path + ": 1 error\n");
 }
 
 TEST(CheckCommand, SyntaxErrorExitsOne) {
