@@ -9,6 +9,7 @@
 #include <asio.hpp>
 
 #include "mocaplink/io/clock.hpp"
+#include "mocaplink/sources/reconnect.hpp"
 #include "mocaplink/wire/natnet_mocap_frame.hpp"
 
 namespace mocaplink::sources {
@@ -72,8 +73,8 @@ class NatnetSource::Session {
   void connect() {
     ++generation_;
     if (attempts_++ > 0) ++owner_.counters_.reconnects;
-    state_.set(SourceState::connecting,
-               opts_.target.host + ":" + std::to_string(opts_.target.command_port));
+    state_(SourceState::connecting,
+           opts_.target.host + ":" + std::to_string(opts_.target.command_port));
     const auto gen = generation_;
     silence_timer_.expires_after(opts_.silence_timeout);
     silence_timer_.async_wait([this, gen](const asio::error_code& ec) {
@@ -255,7 +256,7 @@ class NatnetSource::Session {
       owner_.last_error_.set("rigid-body name \"" + *table_->ambiguous.begin() +
                              "\" is used by two ids in Motive: its bodies are ignored");
     }
-    state_.set(SourceState::connected, detail_);
+    state_(SourceState::connected, detail_);
   }
 
   void on_frame(std::span<const std::byte> payload) {
@@ -355,7 +356,7 @@ class NatnetSource::Session {
     connect_timer_.cancel();
     silence_timer_.cancel();
     keep_alive_timer_.cancel();
-    state_.set(SourceState::disconnected, reason);
+    state_(SourceState::disconnected, reason);
     retry_timer_.expires_after(backoff_.next());
     retry_timer_.async_wait([this](const asio::error_code& ec) {
       if (!ec) connect();
@@ -397,7 +398,7 @@ NatnetSource::~NatnetSource() {
 }
 
 void NatnetSource::start(FrameSink on_frame, StateSink on_state) {
-  thread_.start(*this, std::move(on_frame), std::move(on_state));
+  thread_.start_once(*this, std::move(on_frame), std::move(on_state));
 }
 
 void NatnetSource::stop() {

@@ -10,7 +10,7 @@
 
 #include <asio.hpp>
 
-#include "mocaplink/sources/worker.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 
 namespace mocaplink::sources {
 
@@ -68,7 +68,7 @@ class TickSchedule {
 /// Emulator::start for an emulator whose Impl (its event loop) has open() (bind; an error as one
 /// line), local_port(), run() and stop(): checks the rate, opens, and runs it on `worker`.
 template <typename Impl>
-[[nodiscard]] std::optional<std::string> start_emulator(Worker<Impl>& worker, double rate_hz,
+[[nodiscard]] std::optional<std::string> start_emulator(LoopThread<Impl>& worker, double rate_hz,
                                                         std::unique_ptr<Impl> impl,
                                                         std::uint16_t& port) {
   if (worker.running()) return "already started";

@@ -1,7 +1,8 @@
 // The thread of a socket source or emulator: an object that owns an Asio loop (`run()` until its
 // `stop()`), made, then run on its own thread, then stopped and joined. One implementation for
-// every network client and server (vicon, qtm, …) instead of each repeating the start/stop/join
-// dance; and the "last error" text such a source shows, set on its thread and read from any.
+// every network client and server (vicon, natnet, qtm, vrpn, vicon-udp) instead of each repeating
+// the start/stop/join dance; and the "last error" text such a source shows, set on its thread and
+// read from any.
 #pragma once
 
 #include <cstdint>
@@ -45,6 +46,12 @@ class LoopThread {
     make(std::forward<Args>(args)...);
     run([](Loop& loop) { loop.run(); });
   }
+  /// Takes a loop made (and perhaps already bound) elsewhere and runs `loop->run()` on a new
+  /// thread. Call when not running.
+  void start(std::unique_ptr<Loop> loop) {
+    loop_ = std::move(loop);
+    run([](Loop& l) { l.run(); });
+  }
   /// Stops the loop, joins the thread and destroys the loop. Idempotent.
   void stop() {
     if (!loop_) return;
@@ -52,8 +59,9 @@ class LoopThread {
     if (thread_.joinable()) thread_.join();
     loop_.reset();
   }
-  /// The loop object (nullptr before make() and after stop()).
+  /// The loop object (nullptr before make() and after stop()); its thread-safe members only.
   [[nodiscard]] Loop* get() const { return loop_.get(); }
+  [[nodiscard]] bool running() const { return loop_ != nullptr; }
 
  private:
   std::unique_ptr<Loop> loop_;

@@ -24,8 +24,8 @@
 #include <string>
 
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/natnet_options.hpp"
-#include "mocaplink/sources/session_thread.hpp"
 #include "mocaplink/sources/source.hpp"
 
 namespace mocaplink::sources {
@@ -80,7 +80,7 @@ class NatnetSource final : public Source {
   SourceCounters counters_;
   NatnetCounters natnet_counters_;
   LastError last_error_;
-  SessionThread<Session> thread_;  // last: stopped before the state its session uses
+  LoopThread<Session> thread_;  // last: stopped before the state its session uses
 };
 
 /// natnet:// for the source registry: parse_natnet_options, a NatnetSource, the Y-up reminder and

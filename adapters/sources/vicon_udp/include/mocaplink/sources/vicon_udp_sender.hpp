@@ -20,7 +20,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/sources/descriptor.hpp"
-#include "mocaplink/sources/worker.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/wire/vicon_udp.hpp"
 
 namespace mocaplink::sources {
@@ -69,7 +69,7 @@ class ViconUdpSender final : public Emulator {
   ViconUdpSenderOptions options_;
   ViconUdpSenderCounters counters_;
   std::uint16_t port_ = 0;
-  Worker<Impl> worker_;  // last: stopped first
+  LoopThread<Impl> worker_;  // last: stopped first
 };
 
 }  // namespace mocaplink::sources

@@ -17,9 +17,9 @@
 #include <thread>
 
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/source.hpp"
 #include "mocaplink/sources/vicon_udp_options.hpp"
-#include "mocaplink/sources/worker.hpp"
 #include "mocaplink/wire/vicon_udp_stream.hpp"
 
 namespace mocaplink::sources {
@@ -64,8 +64,8 @@ class ViconUdpSource final : public Source {
   ViconUdpCounters udp_counters_;
   std::atomic<std::uint16_t> bound_port_{0};
   mutable std::mutex mutex_;
-  std::string last_error_;   // guarded by mutex_
-  Worker<Receiver> worker_;  // last: stopped first
+  std::string last_error_;       // guarded by mutex_
+  LoopThread<Receiver> worker_;  // last: stopped first
 };
 
 /// vicon-udp:// for the source registry: parse_vicon_udp_options, a ViconUdpSource, and the

@@ -24,7 +24,7 @@
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/sources/descriptor.hpp"
-#include "mocaplink/sources/worker.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 
 namespace mocaplink::sources {
 
@@ -65,7 +65,7 @@ class VrpnServer final : public Emulator {
   VrpnServerOptions options_;
   VrpnServerCounters counters_;
   std::uint16_t port_ = 0;
-  Worker<Impl> worker_;  // last: stopped first
+  LoopThread<Impl> worker_;  // last: stopped first
 };
 
 }  // namespace mocaplink::sources

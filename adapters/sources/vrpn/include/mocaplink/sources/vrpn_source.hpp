@@ -26,9 +26,9 @@
 #include <vector>
 
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/source.hpp"
 #include "mocaplink/sources/vrpn_options.hpp"
-#include "mocaplink/sources/worker.hpp"
 
 namespace mocaplink::sources {
 
@@ -79,7 +79,7 @@ class VrpnSource final : public Source {
   mutable std::mutex mutex_;
   std::string last_error_;             // guarded by mutex_
   std::vector<std::string> trackers_;  // guarded by mutex_
-  Worker<Session> worker_;             // last: stopped first
+  LoopThread<Session> worker_;         // last: stopped first
 };
 
 /// vrpn:// for the source registry: parse_vrpn_options, a VrpnSource, and the VrpnServer emulator
