@@ -1,6 +1,7 @@
 // VRPN id tables and frame assembly (wire/vrpn_client.hpp) with injected host time: messages are
 // the document's vectors (vrpn.md §9) or built from its layout.
 #include <gtest/gtest.h>
+#include <cstddef>
 
 #include "mocaplink/wire/vrpn_client.hpp"
 #include "vicon_test_bytes.hpp"
@@ -20,7 +21,7 @@ Split split(const std::vector<std::byte>& message) {
   auto h = parse_header(std::span(message).first(kHeaderBytes));
   EXPECT_TRUE(h);
   const auto begin = message.begin() + kHeaderBytes;
-  return {h.value(), {begin, begin + h.value().payload_bytes()}};
+  return {h.value(), {begin, begin + static_cast<std::ptrdiff_t>(h.value().payload_bytes())}};
 }
 
 Result<MessageOutcome> feed(ClientTables& t, const std::vector<std::byte>& message) {
