@@ -163,7 +163,7 @@ int run_listen(const std::string& url_text) {
     });
   };
   tick();
-  io::StopSignals stop(loop, [&](int, int) { loop.stop(); });
+  io::StopSignals stop(loop, [&](std::string_view, int) { loop.stop(); });
   loop.run();
   return 0;
 }

@@ -214,7 +214,7 @@ int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
 
   // SIGINT/SIGTERM from here on stop the server cleanly (a signal during start-up waits for run).
   asio::io_context loop;
-  io::StopSignals stop_signals(loop, [&loop](int, int) { loop.stop(); });
+  io::StopSignals stop_signals(loop, [&loop](std::string_view, int) { loop.stop(); });
   if (const auto err = server->start({})) {
     std::fprintf(stderr, "mocaplink serve: %s%s\n", err->c_str(),
                  listen->second < 1024 ? " (ports below 1024 need root; try --listen :8801)" : "");

@@ -4,7 +4,6 @@
 // Exit codes (commands.hpp): 0 at least one frame arrived; 1 bad command line or source URL
 // (nothing started); 2 no frame ever arrived (source unreachable, silent or empty) or the
 // recording could not be written.
-#include <unistd.h>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -24,6 +23,7 @@
 #include "mocaplink/core/station.hpp"
 #include "mocaplink/io/clock.hpp"
 #include "mocaplink/io/signals.hpp"
+#include "mocaplink/io/terminal.hpp"
 #include "mocaplink/sources/registry.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
@@ -43,7 +43,7 @@ class StationSession {
   StationSession(std::unique_ptr<sources::Source> source, FrameHook also)
       : source_(std::move(source)),
         also_(std::move(also)),
-        signals_(loop_, [this](int, int) { loop_.stop(); }) {
+        signals_(loop_, [this](std::string_view, int) { loop_.stop(); }) {
     source_->start(
         [this](core::MocapFrame frame, core::HostTime received) {
           const std::lock_guard lock(mutex_);
@@ -197,7 +197,7 @@ void run_bodies(const sources::SourceRegistry& sources, const std::string& url,
   if (!source) return;
   StationSession session(std::move(source), nullptr);
   const bool live = !json && !seconds;
-  const bool terminal = isatty(STDOUT_FILENO) != 0;
+  const bool terminal = io::stdout_is_ansi_terminal();
   const auto show = [&] {
     const auto [state, detail] = session.state();
     const std::string text = to_text(url, state, detail, session.snapshot());

@@ -445,9 +445,9 @@ void Daemon::stop(const std::string& reason) {
 }
 
 int Daemon::run() {
-  io::StopSignals signals(loop_, [this](int signal_number, int count) {
+  io::StopSignals signals(loop_, [this](std::string_view what, int count) {
     if (count == 1) {
-      stop(signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+      stop(std::string(what));
     } else {
       spdlog::warn("second signal: stopping now");
       loop_.stop();

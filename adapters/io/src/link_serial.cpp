@@ -1,6 +1,8 @@
 #include "mocaplink/io/link_serial.hpp"
 
+#ifndef _WIN32
 #include <termios.h>
+#endif
 
 #include <cerrno>
 #include <utility>
@@ -11,6 +13,14 @@
 namespace mocaplink::io {
 namespace {
 
+#ifdef _WIN32
+/// Windows: asio's DCB settings (binary mode, the options below) and its COMMTIMEOUTS (a read
+/// returns as soon as one byte is there) are already the raw mode. `device` is a name like COM3
+/// (asio adds the \\.\ prefix that COM10 and above need).
+std::error_code make_raw(asio::serial_port::native_handle_type /*handle*/) {
+  return {};
+}
+#else
 /// Raw mode on top of what asio sets: cfmakeraw also clears the remaining input processing
 /// flags, and VMIN=1/VTIME=0 makes reads return as soon as one byte is there.
 std::error_code make_raw(int fd) {
@@ -23,6 +33,7 @@ std::error_code make_raw(int fd) {
   if (::tcsetattr(fd, TCSANOW, &tio) != 0) return {errno, std::generic_category()};
   return {};
 }
+#endif
 
 }  // namespace
 

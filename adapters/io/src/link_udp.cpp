@@ -1,7 +1,9 @@
 #include "mocaplink/io/link_udp.hpp"
 
+#ifdef __linux__
 #include <sys/socket.h>
 #include <sys/uio.h>
+#endif
 
 #include <algorithm>
 #include <array>
@@ -15,8 +17,10 @@
 namespace mocaplink::io {
 namespace {
 
+/// An earlier datagram met an ICMP port unreachable: Linux reports ECONNREFUSED on the connected
+/// socket's next call, Winsock WSAECONNRESET. Either is counted and survived, never fatal.
 bool is_refused(const std::error_code& error) {
-  return error == asio::error::connection_refused;
+  return error == asio::error::connection_refused || error == asio::error::connection_reset;
 }
 
 std::string bracketed(const std::string& host) {
@@ -143,6 +147,7 @@ std::size_t UdpLink::send_batch(std::span<const std::span<const std::uint8_t>> f
     counters_.dropped_down += frames.size();
     return 0;
   }
+#ifdef __linux__
   std::size_t next = 0;  // the first frame not handed to the OS yet
   std::size_t sent = 0;
   while (next < frames.size()) {
@@ -171,6 +176,11 @@ std::size_t UdpLink::send_batch(std::span<const std::span<const std::uint8_t>> f
       ++next;
     }
   }
+#else
+  // No sendmmsg: one send() per frame.
+  std::size_t sent = 0;
+  for (const auto& frame : frames) sent += send(frame) ? 1U : 0U;
+#endif
   return sent;
 }
 

@@ -1,7 +1,11 @@
 #include "mocaplink/io/signing_store.hpp"
 
+#ifdef _WIN32
+#include <windows.h>
+#else
 #include <fcntl.h>
 #include <unistd.h>
+#endif
 
 #include <array>
 #include <cerrno>
@@ -18,21 +22,43 @@ namespace {
 
 constexpr std::string_view kMagic = "mocaplink-signing-timestamp 1 ";
 
-std::string errno_text(int error) {
-  return std::error_code(error, std::generic_category()).message();
-}
-
-bool write_all(int fd, std::string_view text) {
-  while (!text.empty()) {
-    const ssize_t n = ::write(fd, text.data(), text.size());
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return false;
-    }
-    text.remove_prefix(static_cast<std::size_t>(n));
+#ifdef _WIN32
+/// Writes `text` to a new file (replacing one of that name) and flushes it to the disk.
+std::error_code write_durably(const std::filesystem::path& path, std::string_view text) {
+  const HANDLE file = ::CreateFileW(path.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_ALWAYS,
+                                    FILE_ATTRIBUTE_NORMAL, nullptr);
+  if (file == INVALID_HANDLE_VALUE) {
+    return {static_cast<int>(::GetLastError()), std::system_category()};
   }
-  return true;
+  DWORD written = 0;
+  const bool ok =
+      ::WriteFile(file, text.data(), static_cast<DWORD>(text.size()), &written, nullptr) != 0 &&
+      written == text.size() && ::FlushFileBuffers(file) != 0;
+  const std::error_code error =
+      ok ? std::error_code{}
+         : std::error_code(static_cast<int>(::GetLastError()), std::system_category());
+  ::CloseHandle(file);
+  return error;
 }
+#else
+/// Writes `text` to a new file (replacing one of that name, mode 0600) and fsyncs it.
+std::error_code write_durably(const std::filesystem::path& path, std::string_view text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd < 0) return {errno, std::generic_category()};
+  std::error_code error;
+  while (!text.empty() && !error) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n >= 0) {
+      text.remove_prefix(static_cast<std::size_t>(n));
+    } else if (errno != EINTR) {
+      error = {errno, std::generic_category()};
+    }
+  }
+  if (!error && ::fsync(fd) != 0) error = {errno, std::generic_category()};
+  ::close(fd);
+  return error;
+}
+#endif
 
 }  // namespace
 
@@ -59,6 +85,11 @@ std::filesystem::path default_state_dir() {
   if (const char* dir = std::getenv("MOCAPLINK_STATE_DIR"); dir != nullptr && *dir != '\0') {
     return dir;
   }
+#ifdef _WIN32
+  if (const wchar_t* dir = ::_wgetenv(L"LOCALAPPDATA"); dir != nullptr && *dir != L'\0') {
+    return std::filesystem::path(dir) / "mocaplink";
+  }
+#endif
   if (const char* dir = std::getenv("STATE_DIRECTORY"); dir != nullptr && *dir != '\0') {
     // systemd may pass several directories separated by ':'; the first is ours.
     const std::string_view dirs{dir};
@@ -103,21 +134,10 @@ bool SigningStore::save(std::string_view vehicle, std::uint64_t timestamp_10us,
   const auto path = path_for(vehicle);
   auto temporary = path;
   temporary += ".tmp";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0) {
-    if (problem != nullptr) *problem = temporary.string() + ": " + errno_text(errno);
-    return false;
-  }
-  const bool written = write_all(fd, format_signing_timestamp(timestamp_10us));
-  const int write_error = errno;
-  // fsync before rename: otherwise a power cut can leave an empty file under the final name.
-  const bool synced = written && ::fsync(fd) == 0;
-  const int sync_error = errno;
-  ::close(fd);
-  if (!written || !synced) {
-    if (problem != nullptr) {
-      *problem = temporary.string() + ": " + errno_text(written ? sync_error : write_error);
-    }
+  // Written and flushed under a temporary name, then renamed over the old file: otherwise a power
+  // cut can leave an empty file under the final name.
+  if (const auto error = write_durably(temporary, format_signing_timestamp(timestamp_10us))) {
+    if (problem != nullptr) *problem = temporary.string() + ": " + error.message();
     std::filesystem::remove(temporary, ec);
     return false;
   }

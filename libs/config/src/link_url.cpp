@@ -11,8 +11,17 @@ namespace mocaplink::config {
 namespace {
 
 constexpr std::array<std::string_view, 3> kSchemes = {"udp", "tcp", "serial"};
+// Serial devices are named the platform's way: a COM port on Windows, a device path on Linux.
+#ifdef _WIN32
+constexpr std::string_view kForms = "udp://HOST:PORT, tcp://HOST:PORT or serial://COMn?baud=N";
+constexpr std::string_view kSerialRule = "serial device must be a COM port name, as in ";
+constexpr std::string_view kSerialExample = "serial://COM3?baud=921600";
+#else
 constexpr std::string_view kForms =
     "udp://HOST:PORT, tcp://HOST:PORT or serial:///dev/DEVICE?baud=N";
+constexpr std::string_view kSerialRule = "serial device must be an absolute path, as in ";
+constexpr std::string_view kSerialExample = "serial:///dev/ttyUSB0?baud=921600";
+#endif
 
 // The rates Linux termios can set without termios2 (B9600 ... B4000000): the io adapter maps
 // these to Bxxx constants, so any other number could not be honoured.
@@ -53,17 +62,35 @@ Result parse_network(LinkKind kind, const UrlParts& parts) {
   return link;
 }
 
+#ifdef _WIN32
+/// COM1 … COM999, any case (Windows's own rule for the names a program may open as \\.\COMn).
+bool is_com_port(std::string_view device) {
+  if (device.size() < 4 || device.size() > 6) return false;
+  const auto upper = [](char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; };
+  if (upper(device[0]) != 'C' || upper(device[1]) != 'O' || upper(device[2]) != 'M') return false;
+  const auto digits = device.substr(3);
+  return digits.front() != '0' &&
+         std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+#endif
+
+bool is_device_name(std::string_view device) {
+#ifdef _WIN32
+  return is_com_port(device);
+#else
+  return device.size() >= 2 && device.front() == '/' && device.back() != '/';
+#endif
+}
+
 Result parse_serial(const UrlParts& parts) {
   constexpr std::array<std::string_view, 1> kKeys = {"baud"};
   if (auto error = check_query_keys(parts, kKeys, "serial://"); !error.empty()) {
     return Result::failure(error);
   }
   const auto device = parts.body;
-  if (device.size() < 2 || device.front() != '/' || device.back() == '/') {
-    return Result::failure(
-        "serial device must be an absolute path, as in "
-        "serial:///dev/ttyUSB0?baud=921600, got " +
-        detail::quoted(device));
+  if (!is_device_name(device)) {
+    return Result::failure(std::string(kSerialRule) + std::string(kSerialExample) + ", got " +
+                           detail::quoted(device));
   }
   if (std::any_of(device.begin(), device.end(),
                   [](char c) { return static_cast<unsigned char>(c) <= 0x20; })) {

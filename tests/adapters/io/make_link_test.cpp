@@ -6,6 +6,7 @@
 #include "mocaplink/io/link_serial.hpp"
 #include "mocaplink/io/link_tcp.hpp"
 #include "mocaplink/io/link_udp.hpp"
+#include "serial_device.hpp"
 
 namespace mocaplink::io {
 namespace {
@@ -22,7 +23,8 @@ TEST(MakeLink, EachKindGetsItsLinkClass) {
   asio::io_context loop;
   EXPECT_NE(dynamic_cast<UdpLink*>(make(loop, "udp://127.0.0.1:14540").get()), nullptr);
   EXPECT_NE(dynamic_cast<TcpLink*>(make(loop, "tcp://127.0.0.1:5760").get()), nullptr);
-  EXPECT_NE(dynamic_cast<SerialLink*>(make(loop, "serial:///dev/ttyUSB0?baud=921600").get()),
+  EXPECT_NE(dynamic_cast<SerialLink*>(
+                make(loop, (testing_support::kSerialUrlPrefix + "?baud=921600").c_str()).get()),
             nullptr);
 }
 

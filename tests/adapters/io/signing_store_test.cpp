@@ -1,10 +1,12 @@
 #include "mocaplink/io/signing_store.hpp"
 
-#include <stdlib.h>
-
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <random>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -13,9 +15,14 @@ namespace {
 
 class TempDir {
  public:
+  /// A new directory with a space in its name, so every test here also covers such paths.
   TempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "mocaplink-io-XXXXXX").string();
-    path_ = ::mkdtemp(pattern.data());
+    std::random_device seed;
+    std::mt19937_64 random(seed());
+    do {
+      path_ = std::filesystem::temp_directory_path() /
+              ("mocaplink io " + std::to_string(random() % 1'000'000'000));
+    } while (!std::filesystem::create_directory(path_));
   }
   ~TempDir() {
     std::error_code ignored;
@@ -26,6 +33,65 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// Sets (or, with nullptr, removes) an environment variable for one scope.
+class ScopedEnv {
+ public:
+  ScopedEnv(std::string name, const char* value) : name_(std::move(name)) {
+    if (const char* old = std::getenv(name_.c_str())) old_ = old;
+    set(value);
+  }
+  ~ScopedEnv() { set(old_ ? old_->c_str() : nullptr); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  void set(const char* value) {
+#ifdef _WIN32
+    ::_putenv_s(name_.c_str(), value != nullptr ? value : "");  // "" removes it on Windows
+#else
+    if (value != nullptr) {
+      ::setenv(name_.c_str(), value, 1);
+    } else {
+      ::unsetenv(name_.c_str());
+    }
+#endif
+  }
+  std::string name_;
+  std::optional<std::string> old_;
+};
+
+TEST(DefaultStateDir, TheOverrideComesFirst) {
+  const ScopedEnv state("MOCAPLINK_STATE_DIR", "override dir");
+  const ScopedEnv local("LOCALAPPDATA", "C:\\Users\\lab\\AppData\\Local");
+  const ScopedEnv systemd("STATE_DIRECTORY", "/var/lib/mocaplink");
+  EXPECT_EQ(default_state_dir(), std::filesystem::path("override dir"));
+}
+
+#ifdef _WIN32
+TEST(DefaultStateDir, WindowsUsesLocalAppData) {
+  const ScopedEnv state("MOCAPLINK_STATE_DIR", nullptr);
+  const ScopedEnv local("LOCALAPPDATA", "C:\\Users\\lab user\\AppData\\Local");
+  EXPECT_EQ(default_state_dir(),
+            std::filesystem::path("C:\\Users\\lab user\\AppData\\Local\\mocaplink"));
+}
+#else
+TEST(DefaultStateDir, LinuxUsesSystemdThenXdgThenHome) {
+  const ScopedEnv state("MOCAPLINK_STATE_DIR", nullptr);
+  const ScopedEnv home("HOME", "/home/lab");
+  {
+    const ScopedEnv systemd("STATE_DIRECTORY", "/var/lib/mocaplink:/var/lib/other");
+    EXPECT_EQ(default_state_dir(), std::filesystem::path("/var/lib/mocaplink"));
+  }
+  const ScopedEnv systemd("STATE_DIRECTORY", nullptr);
+  {
+    const ScopedEnv xdg("XDG_STATE_HOME", "/home/lab/state");
+    EXPECT_EQ(default_state_dir(), std::filesystem::path("/home/lab/state/mocaplink"));
+  }
+  const ScopedEnv xdg("XDG_STATE_HOME", nullptr);
+  EXPECT_EQ(default_state_dir(), std::filesystem::path("/home/lab/.local/state/mocaplink"));
+}
+#endif
 
 TEST(SigningTimestampFile, ExactText) {
   EXPECT_EQ(format_signing_timestamp(31557600000000u),

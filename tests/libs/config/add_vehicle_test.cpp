@@ -9,6 +9,7 @@
 
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
+#include "serial_device.hpp"
 #include "test_util.hpp"
 
 namespace mocaplink::config {
@@ -161,10 +162,10 @@ source = "sim://"
 [[vehicle]]
 name = "radio"
 body = "Body1"
-link = "serial:///dev/ttyUSB0?baud=57600"
+link = ")" + testing_support::kSerialUrlPrefix + R"(?baud=57600"
 system_id = 1
 profile = "px4"
-rate_hz = )") + rate + "\n",
+rate_hz = )" + rate + "\n",
                         "lab.toml");
   };
   const auto slow = file("20");

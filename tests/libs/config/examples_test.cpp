@@ -16,7 +16,16 @@ std::string read_example(const std::string& name) {
   EXPECT_TRUE(in.good()) << name;
   std::ostringstream text;
   text << in.rdbuf();
+#ifdef _WIN32
+  // The examples name Linux serial devices; Windows takes COM ports (link_url.cpp).
+  std::string windows = text.str();
+  for (std::size_t at; (at = windows.find("serial:///dev/ttyUSB0")) != std::string::npos;) {
+    windows.replace(at, 21, "serial://COM3");
+  }
+  return windows;
+#else
   return text.str();
+#endif
 }
 
 TEST(Examples, LabWithThreeVehicles) {

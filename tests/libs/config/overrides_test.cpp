@@ -7,6 +7,7 @@
 
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
+#include "serial_device.hpp"
 #include "test_util.hpp"
 
 namespace mocaplink::config {
@@ -62,16 +63,16 @@ TEST(Overrides, DesignExampleAddsAVehicle) {
 
 TEST(Overrides, EveryKeyFromTheCommandLine) {
   CommandLineOverrides o;
-  o.vehicles = {
-      "x:body=Body 2,link=serial:///dev/ttyACM0?baud=115200,system_id=+7,"
-      "component_id=191,profile=custom,messages=odometry+hil_gps,rate_hz=12.5,"
-      "signing_key=" +
-      std::string(64, 'A') + ",body_forward=-y,body_up=+z,enabled=false"};
+  o.vehicles = {"x:body=Body 2,link=" + testing_support::kSerialUrlPrefix +
+                "?baud=115200,system_id=+7,"
+                "component_id=191,profile=custom,messages=odometry+hil_gps,rate_hz=12.5,"
+                "signing_key=" +
+                std::string(64, 'A') + ",body_forward=-y,body_up=+z,enabled=false"};
   const auto result = apply_overrides(demo_config(), o);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   const Vehicle& v = result.config->vehicles.at(1);
   EXPECT_EQ(v.spec.body, "Body 2");
-  EXPECT_EQ(v.link.device, "/dev/ttyACM0");
+  EXPECT_EQ(v.link.device, testing_support::kSerialDevice);
   EXPECT_EQ(v.link.baud, 115200u);
   EXPECT_EQ(v.spec.system_id, 7);
   EXPECT_EQ(v.spec.component_id, 191);

@@ -8,6 +8,7 @@
 
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
+#include "serial_device.hpp"
 #include "test_util.hpp"
 
 namespace mocaplink::config {
@@ -527,8 +528,8 @@ TEST(ParseConfig, WarningsDoNotFail) {
 
 TEST(ParseConfig, SerialLinkTooSlowForTheProfileIsAWarning) {
   const auto vehicle = [](const char* baud) {
-    return kMocap +
-           "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\nlink = \"serial:///dev/ttyUSB0?baud=" + baud +
+    return kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\nlink = \"" +
+           testing_support::kSerialUrlPrefix + "?baud=" + baud +
            "\"\nsystem_id = 1\nprofile = \"px4\"\n";
   };
   const auto slow = parse_config(vehicle("57600"), "s.toml");

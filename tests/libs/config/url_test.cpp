@@ -32,21 +32,50 @@ TEST(LinkUrl, ParsesTheThreeKinds) {
   EXPECT_EQ(tcp.value().address.host, "::1");
   EXPECT_EQ(to_string(tcp.value()), "tcp://[::1]:5760");
 
+#ifdef _WIN32
+  const auto serial = parse_link_url("serial://COM3?baud=921600");
+  ASSERT_TRUE(serial) << serial.error();
+  EXPECT_EQ(serial.value().device, "COM3");
+  EXPECT_EQ(serial.value().baud, 921600u);
+  EXPECT_EQ(to_string(serial.value()), "serial://COM3?baud=921600");
+  EXPECT_EQ(parse_link_url("serial://com12").value().baud, kDefaultSerialBaud);
+  EXPECT_TRUE(parse_link_url("serial://COM256"));
+#else
   const auto serial = parse_link_url("serial:///dev/ttyUSB0?baud=921600");
   ASSERT_TRUE(serial) << serial.error();
   EXPECT_EQ(serial.value().device, "/dev/ttyUSB0");
   EXPECT_EQ(serial.value().baud, 921600u);
   EXPECT_EQ(parse_link_url("serial:///dev/ttyAMA0").value().baud, kDefaultSerialBaud);
+#endif
 }
+
+#ifdef _WIN32
+constexpr std::string_view kForms = "udp://HOST:PORT, tcp://HOST:PORT or serial://COMn?baud=N";
+constexpr const char* kSerial = "serial://COM3";
+#else
+constexpr std::string_view kForms =
+    "udp://HOST:PORT, tcp://HOST:PORT or serial:///dev/DEVICE?baud=N";
+constexpr const char* kSerial = "serial:///dev/ttyUSB0";
+#endif
+
+#ifdef _WIN32
+TEST(LinkUrl, SerialDevicesAreComPortsOnWindows) {
+  for (const char* device : {"/dev/ttyUSB0", "COM", "COM0", "COM1000", "COMx", "LPT1", "COM3 "}) {
+    EXPECT_EQ(parse_link_url(std::string("serial://") + device).error(),
+              std::string("serial device must be a COM port name, as in "
+                          "serial://COM3?baud=921600, got \"") +
+                  device + "\"")
+        << device;
+  }
+}
+#endif
 
 TEST(LinkUrl, RejectsBadAndSharedDestinations) {
   const auto error = [](const char* url) { return parse_link_url(url).error(); };
   EXPECT_EQ(error("192.168.1.21:14540"),
-            "expected udp://HOST:PORT, tcp://HOST:PORT or serial:///dev/DEVICE?baud=N, got "
-            "\"192.168.1.21:14540\"");
-  EXPECT_EQ(error("upd://h:1"),
-            "unknown link scheme \"upd\"; did you mean \"udp\"? (expected udp://HOST:PORT, "
-            "tcp://HOST:PORT or serial:///dev/DEVICE?baud=N)");
+            "expected " + std::string(kForms) + ", got \"192.168.1.21:14540\"");
+  EXPECT_EQ(error("upd://h:1"), "unknown link scheme \"upd\"; did you mean \"udp\"? (expected " +
+                                    std::string(kForms) + ")");
   EXPECT_EQ(error("udp://h"), "missing port: expected HOST:PORT, got \"h\"");
   EXPECT_EQ(error("udp://h:70000"), "port must be 1..65535, got \"70000\"");
   EXPECT_EQ(error("udp://300.1.1.1:5"), "\"300.1.1.1\" is not a valid IPv4 address");
@@ -61,14 +90,16 @@ TEST(LinkUrl, RejectsBadAndSharedDestinations) {
   EXPECT_EQ(error("udp://239.1.1.1:14550"), shared);
   EXPECT_EQ(error("udp://[ff02::1]:14550"), shared);
   EXPECT_TRUE(parse_link_url("udp://192.168.1.255:14550"));  // may be a unicast host in a /23
+#ifndef _WIN32
   EXPECT_EQ(error("serial://dev/ttyUSB0"),
             "serial device must be an absolute path, as in serial:///dev/ttyUSB0?baud=921600, got "
             "\"dev/ttyUSB0\"");
-  EXPECT_EQ(error("serial:///dev/ttyUSB0?baud=1234"),
+#endif
+  EXPECT_EQ(error((std::string(kSerial) + "?baud=1234").c_str()),
             "baud must be a standard rate (9600, 19200, 38400, 57600, 115200, 230400, 460800, "
             "500000, 576000, 921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, "
             "3500000, 4000000), got \"1234\"");
-  EXPECT_EQ(error("serial:///dev/ttyUSB0?bud=9600"),
+  EXPECT_EQ(error((std::string(kSerial) + "?bud=9600").c_str()),
             "unknown option \"bud\" for serial://; did you mean \"baud\"? (options: baud)");
 }
 
