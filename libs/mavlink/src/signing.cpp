@@ -1,15 +1,8 @@
-// MAVLink 2 signing with OpenSSL's SHA-256 (mavlink-wire.md §7).
-//
-// The low-level SHA256_* API is deprecated in OpenSSL 3 in favour of EVP, but EVP_MD_CTX_copy
-// allocates per copy through the provider layer; the plain SHA256_CTX can be precomputed once per
-// key and copied by value per frame, which is what the signed-parse benchmark needs.
-#define OPENSSL_SUPPRESS_DEPRECATED
+// MAVLink 2 signing (mavlink-wire.md §7) with our SHA-256 (sha256.hpp). The state after the
+// secret is precomputed once per key and copied by value per frame.
 #include "mocaplink/mavlink/signing.hpp"
 
-#include <openssl/sha.h>
-
 #include <algorithm>
-#include <cstring>
 
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/text/hex.hpp"
@@ -28,11 +21,7 @@ std::uint64_t signing_timestamp_from_unix_us(std::int64_t unix_us) noexcept {
 }
 
 SigningKey::SigningKey(const std::array<std::uint8_t, 32>& secret) noexcept : secret_(secret) {
-  static_assert(sizeof(SHA256_CTX) <= sizeof(state_) && alignof(SHA256_CTX) <= 8);
-  SHA256_CTX ctx;
-  SHA256_Init(&ctx);
-  SHA256_Update(&ctx, secret_.data(), secret_.size());
-  std::memcpy(state_.data(), &ctx, sizeof(ctx));
+  state_.update(secret_);
 }
 
 std::optional<SigningKey> SigningKey::from_hex(std::string_view hex) noexcept {
@@ -49,11 +38,9 @@ std::optional<SigningKey> SigningKey::from_hex(std::string_view hex) noexcept {
 
 std::array<std::uint8_t, 6> SigningKey::signature(
     std::span<const std::uint8_t> signed_part) const noexcept {
-  SHA256_CTX ctx;
-  std::memcpy(&ctx, state_.data(), sizeof(ctx));
-  SHA256_Update(&ctx, signed_part.data(), signed_part.size());
-  std::array<std::uint8_t, SHA256_DIGEST_LENGTH> digest{};
-  SHA256_Final(digest.data(), &ctx);
+  Sha256 hash = state_;
+  hash.update(signed_part);
+  const Sha256::Digest digest = hash.finish();
   std::array<std::uint8_t, 6> out{};
   std::copy_n(digest.begin(), out.size(), out.begin());
   return out;

@@ -18,6 +18,8 @@
 #include <span>
 #include <string_view>
 
+#include "mocaplink/mavlink/sha256.hpp"
+
 namespace mocaplink::mavlink {
 
 /// Largest 48-bit signing timestamp.
@@ -55,8 +57,7 @@ class SigningKey {
 
  private:
   std::array<std::uint8_t, 32> secret_{};
-  // OpenSSL SHA256_CTX after SHA256_Update(secret); opaque here to keep OpenSSL out of the API.
-  alignas(8) std::array<std::byte, 112> state_{};
+  Sha256 state_;  // after absorbing secret_
 };
 
 /// How to sign one frame. `key` must outlive the encode call.
