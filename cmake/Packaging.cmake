@@ -1,7 +1,31 @@
-# Install rules and the Debian package (issue 14): `cmake --workflow --preset package` for this
-# machine's architecture, the cross-arm64 / cross-armhf workflows for the Raspberry Pi. The .deb
-# holds /usr/bin/mocaplink, /etc/mocaplink/mocaplink.toml (docs/examples/px4-quad.toml, a
-# conffile), the systemd unit packaging/mocaplink.service and the README.
+# Install rules and the packages (issue 14).
+#
+# Windows (cross-windows): a .zip with mocaplink.exe (static: no DLLs beside it), the README, the
+# example configuration as mocaplink.toml, packaging/windows/START-HERE.txt and the licences of the
+# libraries linked into the executable.
+if(WIN32)
+  install(TARGETS mocaplink RUNTIME DESTINATION .)
+  install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/packaging/windows/START-HERE.txt
+          DESTINATION .)
+  install(FILES ${PROJECT_SOURCE_DIR}/docs/examples/px4-quad.toml DESTINATION . RENAME mocaplink.toml)
+  file(GLOB licences ${MOCAPLINK_CROSS_ROOT}/share/licenses/*.copyright)
+  install(FILES ${licences} DESTINATION licenses)
+  install(FILES /usr/share/doc/mingw-w64-x86-64-dev/copyright DESTINATION licenses
+          RENAME mingw-w64-runtime.copyright)
+  set(CPACK_GENERATOR ZIP)
+  set(CPACK_PACKAGE_NAME mocaplink)
+  set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+  set(CPACK_PACKAGE_FILE_NAME mocaplink-${PROJECT_VERSION}-windows-x86_64)
+  set(CPACK_PACKAGE_DIRECTORY ${CMAKE_BINARY_DIR}/packages)
+  set(CPACK_INCLUDE_TOPLEVEL_DIRECTORY ON)
+  include(CPack)
+  return()
+endif()
+
+# Linux: the Debian package, `cmake --workflow --preset package` for this machine's architecture,
+# the cross-arm64 / cross-armhf workflows for the Raspberry Pi. The .deb holds /usr/bin/mocaplink,
+# /etc/mocaplink/mocaplink.toml (docs/examples/px4-quad.toml, a conffile), the systemd unit
+# packaging/mocaplink.service and the README.
 install(TARGETS mocaplink RUNTIME DESTINATION bin)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/examples/px4-quad.toml DESTINATION /etc/mocaplink
         RENAME mocaplink.toml)

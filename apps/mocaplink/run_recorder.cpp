@@ -4,6 +4,7 @@
 #include <system_error>
 #include <utility>
 
+#include "mocaplink/io/file.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
 namespace mocaplink::app {
@@ -20,7 +21,7 @@ std::unique_ptr<Recorder> Recorder::create(const std::filesystem::path& dir,
   }
   std::unique_ptr<Recorder> recorder(new Recorder(dir, source_url));
   const auto csv_path = dir / "mocap.csv";
-  recorder->csv_ = std::fopen(csv_path.c_str(), "wb");
+  recorder->csv_ = io::open_file(csv_path, "wb");
   if (recorder->csv_ == nullptr) {
     if (problem != nullptr) {
       *problem =

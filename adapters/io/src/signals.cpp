@@ -41,6 +41,14 @@ StopSignals* console_owner = nullptr;  // guarded by console_mutex
 std::function<void(std::string_view)> console_deliver;
 
 BOOL WINAPI on_console_event(DWORD event) {
+  return detail::handle_console_event(event);
+}
+#endif
+
+}  // namespace
+
+#ifdef _WIN32
+int detail::handle_console_event(unsigned long event) {
   std::string_view what;
   switch (event) {
     case CTRL_CLOSE_EVENT:
@@ -62,8 +70,6 @@ BOOL WINAPI on_console_event(DWORD event) {
   return TRUE;
 }
 #endif
-
-}  // namespace
 
 #ifdef _WIN32
 StopSignals::StopSignals(asio::io_context& loop, Handler on_signal)

@@ -5,6 +5,8 @@
 #include <system_error>
 #include <utility>
 
+#include "mocaplink/io/file.hpp"
+
 namespace mocaplink::io {
 namespace {
 constexpr std::size_t kBufferBytes = 64 * 1024;
@@ -21,11 +23,7 @@ std::array<std::uint8_t, 8> tlog_time_prefix(std::int64_t unix_us) noexcept {
 
 std::unique_ptr<TlogWriter> TlogWriter::create(const std::filesystem::path& path,
                                                std::string* problem, Mode mode) {
-#ifdef _WIN32
-  std::FILE* file = ::_wfopen(path.c_str(), mode == Mode::append ? L"ab" : L"wb");
-#else
-  std::FILE* file = std::fopen(path.c_str(), mode == Mode::append ? "ab" : "wb");
-#endif
+  std::FILE* file = open_file(path, mode == Mode::append ? "ab" : "wb");
   if (file == nullptr) {
     if (problem != nullptr) {
       *problem = path.string() + ": " + std::error_code(errno, std::generic_category()).message();

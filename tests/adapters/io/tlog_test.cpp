@@ -34,9 +34,11 @@ TEST(Tlog, WritesPrefixedFramesAndFlushesOnClose) {
   writer->close();
   EXPECT_EQ(writer->records(), 2u);
   EXPECT_FALSE(writer->failed());
-  std::ifstream in(path, std::ios::binary);
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                        std::istreambuf_iterator<char>());
+  std::vector<std::uint8_t> bytes;
+  {
+    std::ifstream in(path, std::ios::binary);  // closed before the removal (Windows needs that)
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   ASSERT_EQ(bytes.size(), 2 * (8 + frame.size()));
   EXPECT_EQ(bytes[7], 1);
   EXPECT_EQ(bytes[8], 0xfd);

@@ -40,4 +40,13 @@ class StopSignals {
   int count_ = 0;
 };
 
+#ifdef _WIN32
+namespace detail {
+/// The console control handler StopSignals installs (exposed for tests: Windows cannot be asked
+/// to send a console close). Returns what the handler returns to Windows: TRUE (handled) for a
+/// close, log-off or shutdown once the StopSignals is gone or 10 s have passed; FALSE otherwise.
+int handle_console_event(unsigned long event);
+}  // namespace detail
+#endif
+
 }  // namespace mocaplink::io

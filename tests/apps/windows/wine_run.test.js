@@ -1,0 +1,59 @@
+// mocaplink.exe under Wine, end to end (issue 14): sim → `mocaplink.exe run` → a UDP vehicle on
+// loopback (decoded by node-mavlink), the dashboard answering over HTTP, then Ctrl-C stopping it
+// cleanly. The configuration sits in a directory with spaces in its name and the signing state
+// goes to %LOCALAPPDATA%\mocaplink (pointed into that directory), written on the clean stop.
+//
+// Wine turns a SIGINT to the process into the console's CTRL_C_EVENT, which the C runtime raises
+// as SIGINT — the same path a Ctrl-C in a Windows console takes.
+'use strict';
+
+const fs = require('node:fs');
+const path = require('node:path');
+const h = require('../run/harness');
+
+const { assert } = h;
+
+/// The Wine (Windows) name of a Unix path: Wine's Z: drive is the Unix root.
+const windowsPath = (unixPath) => `Z:${unixPath.replace(/\//g, '\\')}`;
+
+async function main() {
+  const dir = path.join(h.tempDir('wine'), 'lab files');
+  const appData = path.join(dir, 'App Data');
+  fs.mkdirSync(appData, { recursive: true });
+  const vehicle = await new h.UdpVehicle().bind();
+  const config = h.writeConfig(path.join(dir, 'lab config.toml'), 'sim://?bodies=1&rate_hz=100', [
+    { name: 'quad 1', body: 'Body1', link: `udp://127.0.0.1:${vehicle.port}`, profile: 'classic',
+      system_id: 1, rate_hz: 50, signing_key: 'ab'.repeat(32) },
+  ]);
+  const proc = h.mocaplink(['run', '--config', windowsPath(config)], {
+    env: { LOCALAPPDATA: windowsPath(appData), MOCAPLINK_STATE_DIR: '', WINEDEBUG: '-all' },
+  });
+  const [, port] = await h.waitForLog(proc, /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//, 60000);
+
+  // Poses arrive, signed, and decode with an independent MAVLink implementation.
+  await h.waitFor(() => vehicle.ofId(h.ID.ATT_POS_MOCAP).length >= 50, 30000,
+    `50 ATT_POS_MOCAP (got ${vehicle.packets.length} packets)`);
+  assert.equal(vehicle.decoder.invalid, 0, 'frames with a bad CRC');
+  assert.ok(vehicle.ofId(h.ID.ATT_POS_MOCAP).every((p) => p.packet.signature !== null),
+    'unsigned ATT_POS_MOCAP on a signed link');
+
+  // The dashboard answers over HTTP.
+  const api = h.dashboardApi(Number(port));
+  const status = await api('GET', '/api/status');
+  assert.equal(status.status, 200);
+  assert.equal(status.json.vehicles.length, 1);
+  assert.equal(status.json.vehicles[0].name, 'quad 1');
+
+  // Ctrl-C: a clean stop, exit 0, and the signing timestamp saved under %LOCALAPPDATA%.
+  proc.child.kill('SIGINT');
+  const { code, signal } = await proc.exited;
+  assert.equal(signal, null, `killed by ${signal}\n${proc.stderr}`);
+  assert.equal(code, 0, `exit ${code}\n${proc.stderr}`);
+  assert.match(proc.stderr, /stopping: SIGINT/);
+  const state = path.join(appData, 'mocaplink', 'quad 1.signing');
+  assert.match(fs.readFileSync(state, 'utf8'), /^mocaplink-signing-timestamp 1 [1-9]\d*\n$/);
+  console.log(`ok: ${vehicle.packets.length} packets decoded, dashboard on ${port}, ` +
+    `clean stop on Ctrl-C, signing state in ${state}`);
+}
+
+main().catch(h.fail);
