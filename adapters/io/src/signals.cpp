@@ -12,6 +12,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <thread>
 #endif
 
 namespace mocaplink::io {
@@ -34,7 +35,8 @@ std::string_view signal_name(int signal_number) {
 // Ctrl-C and Ctrl-Break reach asio's signal_set as SIGINT and SIGBREAK through the C runtime. A
 // console close, log-off or shutdown has no signal: Windows calls the console control handler on a
 // thread of its own and ends the process as soon as the handler returns. So the handler hands the
-// request to the loop and waits until the StopSignals is destroyed (the owner has stopped cleanly).
+// request to the loop, waits until the StopSignals is destroyed (the owner has stopped cleanly) and
+// then lets main finish (files closed, exit code) rather than return.
 std::mutex console_mutex;
 std::condition_variable console_stopped;
 StopSignals* console_owner = nullptr;  // guarded by console_mutex
@@ -48,7 +50,7 @@ BOOL WINAPI on_console_event(DWORD event) {
 }  // namespace
 
 #ifdef _WIN32
-int detail::handle_console_event(unsigned long event) {
+int detail::handle_console_event(unsigned long event, std::chrono::milliseconds exit_grace) {
   std::string_view what;
   switch (event) {
     case CTRL_CLOSE_EVENT:
@@ -67,6 +69,8 @@ int detail::handle_console_event(unsigned long event) {
   if (console_owner == nullptr) return FALSE;
   console_deliver(what);
   console_stopped.wait_for(lock, std::chrono::seconds(10), [] { return console_owner == nullptr; });
+  lock.unlock();
+  std::this_thread::sleep_for(exit_grace);
   return TRUE;
 }
 #endif

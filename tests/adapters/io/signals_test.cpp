@@ -42,8 +42,9 @@ TEST(StopSignals, ConsoleCloseWaitsForTheCleanStop) {
     what = std::string(name);
     loop.stop();
   });
-  auto handler =
-      std::async(std::launch::async, [] { return detail::handle_console_event(CTRL_CLOSE_EVENT); });
+  auto handler = std::async(std::launch::async, [] {
+    return detail::handle_console_event(CTRL_CLOSE_EVENT, std::chrono::milliseconds(0));
+  });
   auto guard = asio::make_work_guard(loop);
   loop.run();  // until the handler's request arrives
   EXPECT_EQ(what, "console close");

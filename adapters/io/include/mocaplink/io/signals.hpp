@@ -5,6 +5,7 @@
 // signal or console-handler context, so it may do anything the loop may do.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <string_view>
 
@@ -43,9 +44,13 @@ class StopSignals {
 #ifdef _WIN32
 namespace detail {
 /// The console control handler StopSignals installs (exposed for tests: Windows cannot be asked
-/// to send a console close). Returns what the handler returns to Windows: TRUE (handled) for a
-/// close, log-off or shutdown once the StopSignals is gone or 10 s have passed; FALSE otherwise.
-int handle_console_event(unsigned long event);
+/// to send a console close). For a close, log-off or shutdown with a StopSignals alive: hands the
+/// request to its loop, waits until it is destroyed (up to 10 s), then waits `exit_grace` more —
+/// the process normally ends meanwhile, through main, with every file closed — and returns TRUE
+/// (Windows then ends the process). FALSE for anything else (Ctrl-C and Ctrl-Break go on to the C
+/// runtime, which raises SIGINT / SIGBREAK) or without a StopSignals.
+int handle_console_event(unsigned long event,
+                         std::chrono::milliseconds exit_grace = std::chrono::seconds(10));
 }  // namespace detail
 #endif
 
