@@ -58,12 +58,12 @@ void store_be32(std::uint32_t v, std::uint8_t* p) noexcept {
   p[3] = static_cast<std::uint8_t>(v);
 }
 
-// One round of §6.2.2 step 3 with T1 and T2 folded in: the new e is d + T1 and the new a is
+// One round (one t) of §6.2.2 step 3 with T1 and T2 folded in: the new e is d + T1 and the new a is
 // T1 + T2; every other variable only shifts one place, which the caller does by rotating the
 // argument list.
-inline void round(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t& d,
-                  std::uint32_t e, std::uint32_t f, std::uint32_t g, std::uint32_t& h,
-                  std::uint32_t k_plus_w) noexcept {
+inline void step(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t& d,
+                 std::uint32_t e, std::uint32_t f, std::uint32_t g, std::uint32_t& h,
+                 std::uint32_t k_plus_w) noexcept {
   const std::uint32_t t1 = h + big_sigma1(e) + choose(e, f, g) + k_plus_w;
   d += t1;
   h = t1 + big_sigma0(a) + majority(a, b, c);
@@ -85,14 +85,14 @@ void compress(std::array<std::uint32_t, 8>& hash, const std::uint8_t* block) noe
   std::uint32_t g = hash[6];
   std::uint32_t h = hash[7];
   for (std::size_t t = 0; t < 64; t += 8) {
-    round(a, b, c, d, e, f, g, h, kRoundConstants[t + 0] + w[t + 0]);
-    round(h, a, b, c, d, e, f, g, kRoundConstants[t + 1] + w[t + 1]);
-    round(g, h, a, b, c, d, e, f, kRoundConstants[t + 2] + w[t + 2]);
-    round(f, g, h, a, b, c, d, e, kRoundConstants[t + 3] + w[t + 3]);
-    round(e, f, g, h, a, b, c, d, kRoundConstants[t + 4] + w[t + 4]);
-    round(d, e, f, g, h, a, b, c, kRoundConstants[t + 5] + w[t + 5]);
-    round(c, d, e, f, g, h, a, b, kRoundConstants[t + 6] + w[t + 6]);
-    round(b, c, d, e, f, g, h, a, kRoundConstants[t + 7] + w[t + 7]);
+    step(a, b, c, d, e, f, g, h, kRoundConstants[t + 0] + w[t + 0]);
+    step(h, a, b, c, d, e, f, g, kRoundConstants[t + 1] + w[t + 1]);
+    step(g, h, a, b, c, d, e, f, kRoundConstants[t + 2] + w[t + 2]);
+    step(f, g, h, a, b, c, d, e, kRoundConstants[t + 3] + w[t + 3]);
+    step(e, f, g, h, a, b, c, d, kRoundConstants[t + 4] + w[t + 4]);
+    step(d, e, f, g, h, a, b, c, kRoundConstants[t + 5] + w[t + 5]);
+    step(c, d, e, f, g, h, a, b, kRoundConstants[t + 6] + w[t + 6]);
+    step(b, c, d, e, f, g, h, a, kRoundConstants[t + 7] + w[t + 7]);
   }
   hash[0] += a;
   hash[1] += b;
