@@ -1,5 +1,6 @@
 #include "mocaplink/web/dashboard_server.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <condition_variable>
@@ -118,7 +119,8 @@ class ConnectionThreads final : public httplib::TaskQueue {
 class LimitedServer final : public httplib::Server {
  public:
   explicit LimitedServer(const DashboardServerConfig& config)
-      : slots_(config.max_connections_per_client),
+      // 0 is refused by start(); until then ClientSlots must still be valid.
+      : slots_(std::max<std::size_t>(config.max_connections_per_client, 1)),
         request_timeout_(config.request_timeout),
         idle_timeout_(config.idle_timeout) {}
 

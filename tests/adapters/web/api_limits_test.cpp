@@ -133,5 +133,15 @@ TEST_F(ApiLimitsTest, ABodyThatStopsHalfwayIsAnswered408) {
   EXPECT_EQ(backend_.applied().size(), 0U);
 }
 
+TEST_F(ApiLimitsTest, LimitsOfZeroAreRefusedAtStart) {
+  for (const DashboardServerConfig& config :
+       {DashboardServerConfig{.port = 0, .max_connections_per_client = 0},
+        DashboardServerConfig{.port = 0, .request_timeout = std::chrono::milliseconds(0)},
+        DashboardServerConfig{.port = 0, .idle_timeout = std::chrono::milliseconds(0)}}) {
+    DashboardServer server(backend_, config);
+    EXPECT_EQ(server.start(), "the dashboard connection limits must be positive");
+  }
+}
+
 }  // namespace
 }  // namespace mocaplink::web::testing
