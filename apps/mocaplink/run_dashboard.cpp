@@ -113,6 +113,7 @@ std::variant<std::unique_ptr<RunDashboard>, std::string> RunDashboard::start(
   server_config.host = access.config.http.listen.host;
   server_config.port = access.config.http.listen.port;
   server_config.token = access.config.http.token;
+  server_config.max_connections_per_client = access.config.http.max_connections_per_client;
   dashboard->server_ = std::make_unique<web::DashboardServer>(*dashboard->backend_, server_config);
   if (auto error = dashboard->server_->start()) return "dashboard: " + *error;
   return dashboard;

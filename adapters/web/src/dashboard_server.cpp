@@ -1,5 +1,6 @@
 #include "mocaplink/web/dashboard_server.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <condition_variable>
@@ -16,8 +17,11 @@
 
 #include "mocaplink/web/alerts.hpp"
 #include "mocaplink/web/assets.hpp"
+#include "mocaplink/web/connection_limits.hpp"
 #include "mocaplink/web/http_auth.hpp"
 #include "mocaplink/web/status_json.hpp"
+#include "request_stream.hpp"
+#include "socket_io.hpp"
 
 namespace mocaplink::web {
 namespace {
@@ -26,7 +30,6 @@ using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 
 constexpr std::size_t kMaxBodyBytes = 64 * 1024;  // a vehicle spec is well under 1 KiB
-constexpr std::chrono::seconds kReadTimeout{2};
 constexpr std::string_view kVehiclePath = "/api/vehicles/";
 
 // Browsers get the page and talk only to this origin; nothing is loaded from elsewhere.
@@ -62,7 +65,7 @@ std::string host_for_url(const std::string& host) {
 /// connections wait in FIFO order for a thread): an idle connection, a client sending one byte a
 /// second or an event stream holds only its own thread, never one that another request needs
 /// (httplib's fixed pool let 16 idle connections stall /api/status for seconds). Idle threads
-/// cost no CPU; a thread ends with its connection (read timeout kReadTimeout between bytes).
+/// cost no CPU; a thread ends with its connection (LimitedServer's timeouts).
 class ConnectionThreads final : public httplib::TaskQueue {
  public:
   explicit ConnectionThreads(std::size_t max_threads) : max_threads_(max_threads) {}
@@ -108,12 +111,87 @@ class ConnectionThreads final : public httplib::TaskQueue {
   std::deque<std::function<void()>> waiting_;
 };
 
+/// httplib's server with its connection loop replaced (httplib lets a subclass serve a socket:
+/// SSLServer does the same): a connection from an address that already holds
+/// `max_connections_per_client` is closed before anything is read, and every request is read
+/// through a RequestStream, so it must arrive within `request_timeout` of its first byte.
+/// Between requests a connection may stay silent for `idle_timeout`.
+class LimitedServer final : public httplib::Server {
+ public:
+  explicit LimitedServer(const DashboardServerConfig& config)
+      // 0 is refused by start(); until then ClientSlots must still be valid.
+      : slots_(std::max<std::size_t>(config.max_connections_per_client, 1)),
+        request_timeout_(config.request_timeout),
+        idle_timeout_(config.idle_timeout) {}
+
+  [[nodiscard]] ConnectionsView counters() const {
+    return ConnectionsView{slots_.open(), slots_.refused(), timed_out_.load()};
+  }
+
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    const std::string address = detail::socket_address(sock, false);
+    if (!slots_.try_acquire(address)) {
+      detail::close_connection(sock);
+      const std::uint64_t refused = slots_.refused();
+      if (is_power_of_ten(refused)) {  // a summary, not a line per refusal (a scanner loops)
+        spdlog::warn(
+            "dashboard: {} connection(s) refused so far: the client address already held {} "
+            "(latest from {})",
+            refused, slots_.per_client(), address);
+      }
+      return false;
+    }
+    const bool served = serve(sock);
+    slots_.release(address);
+    detail::close_connection(sock);
+    return served;
+  }
+
+  /// Requests one after the other on one connection (keep-alive), as httplib's own loop does.
+  bool serve(socket_t sock) {
+    bool ok = false;
+    for (std::size_t left = keep_alive_max_count_; left > 0 && svr_sock_ != INVALID_SOCKET;) {
+      --left;
+      if (detail::wait_socket(sock, false, idle_timeout_) != detail::SocketWait::ready) break;
+      RequestDeadline deadline(request_timeout_, idle_timeout_);
+      deadline.start(RequestDeadline::Clock::now());
+      detail::RequestStream stream(sock, deadline, write_timeout());
+      bool closed = false;
+      ok = process_request(stream, left == 0, closed, nullptr);
+      if (stream.timed_out()) {
+        ++timed_out_;
+        stream.answer_timed_out();
+        return false;
+      }
+      if (!ok || closed) break;
+    }
+    return ok;
+  }
+
+  [[nodiscard]] std::chrono::milliseconds write_timeout() const {
+    return std::chrono::seconds(write_timeout_sec_) +
+           std::chrono::duration_cast<std::chrono::milliseconds>(
+               std::chrono::microseconds(write_timeout_usec_));
+  }
+
+  static bool is_power_of_ten(std::uint64_t n) {
+    while (n >= 10 && n % 10 == 0) n /= 10;
+    return n == 1;
+  }
+
+  ClientSlots slots_;
+  const std::chrono::milliseconds request_timeout_;
+  const std::chrono::milliseconds idle_timeout_;
+  std::atomic<std::uint64_t> timed_out_{0};
+};
+
 }  // namespace
 
 class DashboardServer::Impl {
  public:
   Impl(DashboardBackend& backend, DashboardServerConfig config)
-      : backend_(backend), config_(std::move(config)) {}
+      : backend_(backend), config_(std::move(config)), server_(config_) {}
 
   ~Impl() { stop(); }
   Impl(const Impl&) = delete;
@@ -145,7 +223,7 @@ class DashboardServer::Impl {
 
   DashboardBackend& backend_;
   DashboardServerConfig config_;
-  httplib::Server server_;
+  LimitedServer server_;
   std::thread thread_;
   std::uint16_t port_ = 0;
   bool started_ = false;
@@ -173,14 +251,18 @@ std::optional<std::string> DashboardServer::Impl::start() {
            " without a token: set [http] token (anyone on the network could change what the "
            "vehicles receive), or listen on 127.0.0.1";
   }
+  if (config_.max_connections_per_client == 0 ||
+      config_.request_timeout <= std::chrono::milliseconds::zero() ||
+      config_.idle_timeout <= std::chrono::milliseconds::zero()) {
+    return "the dashboard connection limits must be positive";
+  }
   install_routes();
   const std::size_t threads = std::max(config_.max_connections, config_.max_event_clients + 2);
   server_.new_task_queue = [threads] { return new ConnectionThreads(threads); };
   server_.set_payload_max_length(kMaxBodyBytes);
-  server_.set_keep_alive_timeout(2);
-  // Header and body deadlines: a connection that sends nothing for this long is closed (a stuck
-  // tab, a port scanner, a half-sent request).
-  server_.set_read_timeout(kReadTimeout);
+  // Timeouts between and within requests are LimitedServer's (config_.idle_timeout and
+  // request_timeout); httplib's read timeout only remains on the socket as SO_RCVTIMEO.
+  server_.set_read_timeout(config_.idle_timeout);
   // httplib's default sets SO_REUSEPORT, which lets a second daemon bind the same port and
   // silently take half the requests. SO_REUSEADDR alone still allows a quick restart (TIME_WAIT)
   // but makes "port in use" an error.
@@ -273,6 +355,7 @@ std::shared_ptr<const DashboardServer::Impl::Snapshot> DashboardServer::Impl::sn
   if (snapshot_ && now - snapshot_time_ < config_.event_period / 2) return snapshot_;
   StatusView status = backend_.status();
   alerts_.annotate(status, std::chrono::duration<double>(now - created_).count());
+  status.http = server_.counters();
   auto fresh = std::make_shared<Snapshot>();
   fresh->status = status;
   fresh->text = fresh->status.dump();

@@ -121,7 +121,11 @@ void to_json(nlohmann::json& j, const StatusView& status) {
   j = nlohmann::json{{"uptime_s", status.uptime_s},
                      {"station", status.station},
                      {"vehicles", status.vehicles},
-                     {"alerts", status.alerts}};
+                     {"alerts", status.alerts},
+                     {"http",
+                      {{"connections_open", status.http.open},
+                       {"connections_refused", status.http.refused},
+                       {"requests_timed_out", status.http.timed_out}}}};
 }
 
 }  // namespace mocaplink::web

@@ -108,6 +108,7 @@ struct ConfigDraft {
   std::vector<TrackingSite> tracking_sites;
   Field<HostPort> listen;
   Field<std::string> token;
+  Field<std::uint32_t> max_connections_per_client;
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")
 };
 

@@ -247,6 +247,9 @@ HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
   HttpSettings http;
   if (d.listen.value) http.listen = *d.listen.value;
   if (d.token.value) http.token = *d.token.value;
+  if (d.max_connections_per_client.value) {
+    http.max_connections_per_client = *d.max_connections_per_client.value;
+  }
   if (d.listen.value && !is_loopback(http.listen.host) && http.token.empty() &&
       (!d.token.present || d.token.value)) {
     diagnostics.error(d.listen.where, d.listen.key,

@@ -175,9 +175,18 @@ void http_token(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.token, v, std::move(parsed), diag);
 }
 
-constexpr std::array<KeySpec<ConfigDraft>, 2> kHttpKeys = {{
+void http_max_connections_per_client(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  // 256: the dashboard serves that many connections at once (web::DashboardServerConfig).
+  ValueOrError<std::uint32_t> parsed = ValueOrError<std::uint32_t>::failure(
+      "must be an integer from 1 to 256, got " + std::to_string(v.integer()));
+  if (v.integer() >= 1 && v.integer() <= 256) parsed = static_cast<std::uint32_t>(v.integer());
+  assign(d.max_connections_per_client, v, std::move(parsed), diag);
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 3> kHttpKeys = {{
     {"listen", ValueType::string, http_listen},
     {"token", ValueType::string, http_token},
+    {"max_connections_per_client", ValueType::integer, http_max_connections_per_client},
 }};
 
 // ---- [[vehicle]] ----

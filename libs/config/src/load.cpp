@@ -86,6 +86,8 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin,
   d.tracking = config.tracking;
   d.listen = given(config.http.listen, where, "http.listen");
   d.token = given(config.http.token, where, "http.token");
+  d.max_connections_per_client =
+      given(config.http.max_connections_per_client, where, "http.max_connections_per_client");
   return d;
 }
 

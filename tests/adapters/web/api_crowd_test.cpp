@@ -3,11 +3,6 @@
 // byte per second, GET /api/status and a PATCH are still answered. No timing is asserted: the
 // requests only have to be answered before a generous client deadline (how fast they are is
 // measured by bench/web_crowd, docs/performance.md).
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
@@ -16,33 +11,20 @@
 #include <vector>
 
 #include "api_fixture.hpp"
+#include "raw_client.hpp"
 
 namespace mocaplink::web::testing {
 namespace {
 
-/// A TCP connection to the server that sends `text` and then nothing more.
-int connect_and_send(std::uint16_t port, const std::string& text) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_port = htons(port);
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-    if (fd >= 0) ::close(fd);
-    return -1;
-  }
-  if (!text.empty() && ::send(fd, text.data(), text.size(), MSG_NOSIGNAL) < 0) {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
-
 TEST_F(ApiTest, IdleSlowAndStreamingClientsDoNotLockTheOperatorOut) {
   const std::uint16_t port = server_->port();
+  // 100 idle connections from four addresses (25 each, within the cap of 32 per address; the
+  // cap itself is api_limits_test's): a crowd of tabs and scanners on the lab network.
   std::vector<int> idle;
+  const char* const crowd[] = {"127.0.0.2", "127.0.0.3", "127.0.0.4", "127.0.0.5"};
   for (int i = 0; i < 100; ++i) {
-    const int fd = connect_and_send(port, "GET /api/status HTTP/1.1\r\nHost: 127.0.0.1\r\n");
+    const int fd =
+        connect_and_send(port, "GET /api/status HTTP/1.1\r\nHost: 127.0.0.1\r\n", crowd[i % 4]);
     ASSERT_GE(fd, 0) << "idle connection " << i;
     idle.push_back(fd);
   }

@@ -64,6 +64,7 @@ jump_confirm_frames = 3
 [http]
 listen = "[::1]:0"
 token = "0123456789abcdef"
+max_connections_per_client = 8
 )";
 
 TEST(ParseConfig, GoodFileGivesTypedValues) {
@@ -127,6 +128,7 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
 
   EXPECT_EQ(c.http.listen, (HostPort{"::1", 0}));
   EXPECT_EQ(c.http.token, "0123456789abcdef");
+  EXPECT_EQ(c.http.max_connections_per_client, 8U);
 }
 
 TEST(ParseConfig, MinimalFileGetsDocumentedDefaults) {
@@ -160,6 +162,7 @@ profile = "px4"
   EXPECT_EQ(c.tracking.jump_confirm_frames, defaults.jump_confirm_frames);
   EXPECT_EQ(c.http.listen, (HostPort{"127.0.0.1", 8080}));
   EXPECT_EQ(c.http.token, "");
+  EXPECT_EQ(c.http.max_connections_per_client, 32U);
   ASSERT_EQ(c.vehicles.size(), 1u);
   EXPECT_EQ(c.vehicles[0].spec.rate_hz, 50.0);
   EXPECT_EQ(c.vehicles[0].spec.component_id, 197);
@@ -406,6 +409,9 @@ std::vector<BadCase> bad_cases() {
       {"ShortToken",
        kMocap + "[http]\ntoken = \"secret\"\n",
        {"t.toml:4:9: http.token: must be empty or at least 16 characters, got 6"}},
+      {"ConnectionsPerClientRange",
+       kMocap + "[http]\nmax_connections_per_client = 0\n",
+       {"t.toml:4:30: http.max_connections_per_client: must be an integer from 1 to 256, got 0"}},
       {"ListenWithoutPort",
        kMocap + "[http]\nlisten = \"localhost\"\n",
        {"t.toml:4:10: http.listen: missing port: expected HOST:PORT, got \"localhost\""}},

@@ -1,6 +1,7 @@
 // The dashboard's HTTP server (docs/api.md): the embedded page at "/", the REST API under /api/
 // and server-sent events at /api/events, over cpp-httplib with one thread per connection (an idle
-// or slow client never holds a thread another request needs).
+// or slow client never holds a thread another request needs), a cap on connections per client
+// address and a deadline on every request (connection_limits.hpp).
 #pragma once
 
 #include <chrono>
@@ -24,6 +25,15 @@ struct DashboardServerConfig {
   std::size_t max_event_clients = 8;            ///< concurrent /api/events streams; more get 503
   /// Connections served at once, one thread each (idle ones cost no CPU); more wait for one.
   std::size_t max_connections = 256;
+  /// Connections one client address may hold at once, ≥ 1; more are closed at once and counted
+  /// (`http.connections_refused` in /api/status). A stuck tab or a scanner cannot take them all.
+  std::size_t max_connections_per_client = 32;
+  /// A request (request line, headers and body) must arrive within this from its first byte, and
+  /// without a silence of `idle_timeout` between bytes; otherwise it is answered 408 and the
+  /// connection closed (`http.requests_timed_out`). > 0. Answers and event streams are not bound.
+  std::chrono::milliseconds request_timeout{5000};
+  /// A connection silent this long before or between requests is closed, > 0.
+  std::chrono::milliseconds idle_timeout{2000};
 };
 
 /// Owns the listening socket and the worker threads. start() once; stop() (or the destructor)

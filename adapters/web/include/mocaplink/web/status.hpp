@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -150,12 +151,23 @@ struct Alert {
   std::string message{};  ///< one readable sentence
 };
 
+/// The dashboard server's own connections (the server fills them in, not the daemon).
+struct ConnectionsView {
+  std::size_t open = 0;  ///< connections being served now (event streams included)
+  /// Connections closed unread because their client address already held
+  /// max_connections_per_client, cumulative.
+  std::uint64_t refused = 0;
+  /// Requests answered 408: not complete within the request deadline, cumulative.
+  std::uint64_t timed_out = 0;
+};
+
 /// Everything GET /api/status returns.
 struct StatusView {
   double uptime_s = 0.0;  ///< seconds since the daemon started
   StationView station{};
   std::vector<VehicleView> vehicles{};
   std::vector<Alert> alerts{};  ///< the daemon's own; the server appends the derived ones
+  ConnectionsView http{};       ///< the server's
 };
 
 }  // namespace mocaplink::web

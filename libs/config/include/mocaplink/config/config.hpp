@@ -51,6 +51,8 @@ struct Vehicle {
 struct HttpSettings {
   HostPort listen{"127.0.0.1", 8080};  ///< port 0 = any free port (tests)
   std::string token;  ///< "" or ≥ 16 characters; required when listen is not loopback
+  /// Dashboard connections one client address may hold at once, 1..256 (the server's total).
+  std::uint32_t max_connections_per_client = 32;
 };
 
 struct Config {
