@@ -50,7 +50,7 @@ endif()
 # scripts/check-deb compares this list with the binary's NEEDED entries; natively dpkg-shlibdeps
 # adds the version constraints too.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libc6, libstdc++6, libgcc-s1, libfmt9, libspdlog1.10, libtomlplusplus3, libcpp-httplib0.11, libgeographiclib23")
+    "libc6, libstdc++6, libgcc-s1, libssl3, libfmt9, libspdlog1.10, libtomlplusplus3, libcpp-httplib0.11, libgeographiclib23")
 if(NOT CMAKE_CROSSCOMPILING)
   set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 endif()

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <condition_variable>
 #include <cstring>
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 
@@ -263,17 +263,14 @@ std::optional<std::string> DashboardServer::Impl::start() {
   // Timeouts between and within requests are LimitedServer's (config_.idle_timeout and
   // request_timeout); httplib's read timeout only remains on the socket as SO_RCVTIMEO.
   server_.set_read_timeout(config_.idle_timeout);
-  // httplib's default sets SO_REUSEPORT, which lets a second daemon bind the same port and
-  // silently take half the requests. SO_REUSEADDR alone still allows a quick restart (TIME_WAIT)
-  // but makes "port in use" an error.
-  int listen_socket = -1;
-  server_.set_socket_options([&listen_socket](auto sock) {
-    int yes = 1;
-    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
-    listen_socket = static_cast<int>(sock);
+  // Not httplib's default options (socket_io.hpp says why).
+  std::optional<detail::Socket> listen_socket;
+  server_.set_socket_options([&listen_socket](socket_t sock) {
+    detail::set_listen_options(static_cast<detail::Socket>(sock));
+    listen_socket = static_cast<detail::Socket>(sock);
   });
 
-  errno = 0;
+  detail::clear_socket_error();
   int bound = -1;
   if (config_.port == 0) {
     bound = server_.bind_to_any_port(config_.host);
@@ -281,16 +278,16 @@ std::optional<std::string> DashboardServer::Impl::start() {
     bound = config_.port;
   }
   if (bound <= 0) {
-    // httplib reports only failure; errno still holds the reason from getaddrinfo/bind.
-    const int error = errno;
+    // httplib reports only failure; the socket error still holds the reason from getaddrinfo/bind.
+    const std::string error = detail::last_socket_error();
     return "cannot listen on " + address + ": " +
-           (error != 0 ? std::string(std::strerror(error))
-                       : std::string("address not available or host name does not resolve"));
+           (!error.empty() ? error
+                           : std::string("address not available or host name does not resolve"));
   }
   // httplib listens with a backlog of 5: a few idle connections waiting for accept() made the
   // kernel drop new handshakes, and the operator's browser retried after 1, 3, 7 s. Listening
   // again on the bound socket only raises the backlog.
-  if (listen_socket >= 0) ::listen(listen_socket, SOMAXCONN);
+  if (listen_socket) detail::raise_backlog(*listen_socket);
   port_ = static_cast<std::uint16_t>(bound);
   started_ = true;
   thread_ = std::thread([this] { server_.listen_after_bind(); });

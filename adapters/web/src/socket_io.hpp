@@ -1,18 +1,24 @@
 // The few socket calls the dashboard server makes itself, beyond cpp-httplib (request_stream.hpp):
-// waiting for a socket, reading, writing, the peer's address and closing. POSIX only, and kept
-// here on purpose: a Windows build replaces this one file (WSAPoll, recv/send, closesocket).
+// waiting for a socket, reading, writing, the peer's address, closing, and the listening socket's
+// options. Every platform difference of the server is here: POSIX (poll, recv/send, close) and
+// Winsock (WSAPoll, recv/send, closesocket).
 #pragma once
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include <sys/types.h>
 
 namespace mocaplink::web::detail {
 
-/// The socket type cpp-httplib hands the server (int on POSIX).
+/// The socket type cpp-httplib hands the server (int on POSIX, SOCKET on Windows).
+#ifdef _WIN32
+using Socket = std::uintptr_t;
+#else
 using Socket = int;
+#endif
 
 enum class SocketWait {
   ready,    ///< readable (data or end of stream) / writable
@@ -36,5 +42,18 @@ ssize_t send_bytes(Socket socket, const char* data, std::size_t size);
 
 /// Shuts both directions down and closes `socket`.
 void close_connection(Socket socket);
+
+/// Options of the listening socket, set before bind. Linux: SO_REUSEADDR only (httplib's default
+/// SO_REUSEPORT would let a second daemon bind the same port and take half the requests);
+/// Windows: SO_EXCLUSIVEADDRUSE (its SO_REUSEADDR would let another program take the port).
+void set_listen_options(Socket socket);
+
+/// Raises the backlog of the bound, listening socket to SOMAXCONN.
+void raise_backlog(Socket socket);
+
+/// The reason of the last failed socket call on this thread ("" when none is recorded), and
+/// clearing it before a call.
+[[nodiscard]] std::string last_socket_error();
+void clear_socket_error();
 
 }  // namespace mocaplink::web::detail

@@ -1,16 +1,61 @@
-// MAVLink 2 signing (mavlink-wire.md §7) with our SHA-256 (sha256.hpp). The state after the
-// secret is precomputed once per key and copied by value per frame.
+// MAVLink 2 signing (mavlink-wire.md §7). The SHA-256 state after the secret is precomputed once
+// per key and copied by value per frame.
+//
+// Which SHA-256: OpenSSL's where the build has it (Linux, MOCAPLINK_SIGNING_OPENSSL): it runs on
+// the CPU's SHA instructions where there are some (x86 SHA-NI, ARMv8 crypto extensions), 3.3× our
+// portable code on the team's Xeon and what keeps signed parsing above issue 2's 2× the C library
+// (docs/performance.md). Elsewhere (Windows, which has no OpenSSL) our own Sha256 (sha256.hpp),
+// which the tests check against OpenSSL on Linux. The low-level SHA256_* API is deprecated in
+// OpenSSL 3 in favour of EVP, but EVP_MD_CTX_copy allocates per copy through the provider layer;
+// the plain SHA256_CTX is copied by value.
+#ifdef MOCAPLINK_SIGNING_OPENSSL
+#define OPENSSL_SUPPRESS_DEPRECATED
+#include <openssl/sha.h>
+#endif
+
 #include "mocaplink/mavlink/signing.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <type_traits>
 
 #include "mocaplink/mavlink/frame.hpp"
+#include "mocaplink/mavlink/sha256.hpp"
 #include "mocaplink/text/hex.hpp"
 
 namespace mocaplink::mavlink {
 namespace {
 
 constexpr std::uint32_t kRadioStatusId = 109;  // RADIO_STATUS, common.xml
+
+#ifdef MOCAPLINK_SIGNING_OPENSSL
+using HashState = SHA256_CTX;
+HashState hash_start() noexcept {
+  HashState state;
+  SHA256_Init(&state);
+  return state;
+}
+void hash_update(HashState& state, std::span<const std::uint8_t> data) noexcept {
+  SHA256_Update(&state, data.data(), data.size());
+}
+std::array<std::uint8_t, 32> hash_finish(HashState& state) noexcept {
+  std::array<std::uint8_t, 32> digest{};
+  SHA256_Final(digest.data(), &state);
+  return digest;
+}
+#else
+using HashState = Sha256;
+HashState hash_start() noexcept {
+  return Sha256{};
+}
+void hash_update(HashState& state, std::span<const std::uint8_t> data) noexcept {
+  state.update(data);
+}
+std::array<std::uint8_t, 32> hash_finish(HashState& state) noexcept {
+  return state.finish();
+}
+#endif
+static_assert(std::is_trivially_copyable_v<HashState>);
 
 }  // namespace
 
@@ -21,7 +66,10 @@ std::uint64_t signing_timestamp_from_unix_us(std::int64_t unix_us) noexcept {
 }
 
 SigningKey::SigningKey(const std::array<std::uint8_t, 32>& secret) noexcept : secret_(secret) {
-  state_.update(secret_);
+  static_assert(sizeof(HashState) <= sizeof(state_) && alignof(HashState) <= 8);
+  HashState state = hash_start();
+  hash_update(state, secret_);
+  std::memcpy(state_.data(), &state, sizeof(state));
 }
 
 std::optional<SigningKey> SigningKey::from_hex(std::string_view hex) noexcept {
@@ -38,9 +86,10 @@ std::optional<SigningKey> SigningKey::from_hex(std::string_view hex) noexcept {
 
 std::array<std::uint8_t, 6> SigningKey::signature(
     std::span<const std::uint8_t> signed_part) const noexcept {
-  Sha256 hash = state_;
-  hash.update(signed_part);
-  const Sha256::Digest digest = hash.finish();
+  HashState state;
+  std::memcpy(&state, state_.data(), sizeof(state));
+  hash_update(state, signed_part);
+  const auto digest = hash_finish(state);
   std::array<std::uint8_t, 6> out{};
   std::copy_n(digest.begin(), out.size(), out.begin());
   return out;

@@ -18,8 +18,6 @@
 #include <span>
 #include <string_view>
 
-#include "mocaplink/mavlink/sha256.hpp"
-
 namespace mocaplink::mavlink {
 
 /// Largest 48-bit signing timestamp.
@@ -57,7 +55,10 @@ class SigningKey {
 
  private:
   std::array<std::uint8_t, 32> secret_{};
-  Sha256 state_;  // after absorbing secret_
+  // The SHA-256 state after absorbing secret_: OpenSSL's SHA256_CTX (112 bytes) or our Sha256
+  // (104), whichever signing.cpp uses on this platform; opaque here to keep OpenSSL out of the API.
+  using State = std::array<std::byte, 112>;
+  alignas(8) State state_{};
 };
 
 /// How to sign one frame. `key` must outlive the encode call.
