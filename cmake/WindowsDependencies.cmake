@@ -16,7 +16,9 @@ target_compile_definitions(spdlog::spdlog INTERFACE SPDLOG_HEADER_ONLY SPDLOG_FM
 target_link_libraries(spdlog::spdlog INTERFACE fmt::fmt)
 mocaplink_header_target(nlohmann_json::nlohmann_json)
 mocaplink_header_target(CLI11::CLI11)
-# cpp-httplib without OpenSSL, zlib or brotli (the dashboard is plain HTTP on the lab network).
+# cpp-httplib without OpenSSL, zlib or brotli (the dashboard is plain HTTP on the lab network),
+# with poll() as Debian builds it (WSAPoll here).
 mocaplink_header_target(PkgConfig::HTTPLIB)
+target_compile_definitions(PkgConfig::HTTPLIB INTERFACE CPPHTTPLIB_USE_POLL)
 target_link_libraries(PkgConfig::HTTPLIB INTERFACE ws2_32 crypt32)
 find_package(GeographicLib REQUIRED CONFIG)

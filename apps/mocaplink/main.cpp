@@ -9,6 +9,9 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"mocaplink: motion capture (Vicon, OptiTrack, Qualisys, VRPN) to MAVLink vehicles"};
+  // The same command line on every platform: on Windows CLI11 would otherwise also take "/x" as an
+  // option, and then a path such as /tmp/lab.toml (or Z:-less paths under Wine) as a stray flag.
+  app.allow_windows_style_options(false);
   app.set_version_flag("--version", MOCAPLINK_VERSION);
   app.require_subcommand(1);
   mocaplink::app::ExitCode exit_code;

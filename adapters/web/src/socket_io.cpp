@@ -13,7 +13,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <system_error>
+#include <string>
 
 namespace mocaplink::web::detail {
 
@@ -85,7 +85,18 @@ void raise_backlog(Socket socket) {
 
 std::string last_socket_error() {
   const int error = ::WSAGetLastError();
-  return error == 0 ? std::string() : std::system_category().message(error);
+  if (error == 0) return "";
+  char text[512] = {};
+  const DWORD n =
+      ::FormatMessageA(FORMAT_MESSAGE_FROM_SYSTEM | FORMAT_MESSAGE_IGNORE_INSERTS, nullptr,
+                       static_cast<DWORD>(error), 0, text, sizeof text, nullptr);
+  std::string message(text, n);
+  while (!message.empty() && (message.back() == '\n' || message.back() == '\r' ||
+                              message.back() == ' ' || message.back() == '.')) {
+    message.pop_back();
+  }
+  return (message.empty() ? "socket error" : message) + " (WSA error " + std::to_string(error) +
+         ")";
 }
 
 void clear_socket_error() {
