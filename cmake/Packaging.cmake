@@ -9,6 +9,7 @@ if(WIN32)
           DESTINATION .)
   install(FILES ${PROJECT_SOURCE_DIR}/docs/examples/px4-quad.toml DESTINATION . RENAME mocaplink.toml)
   file(GLOB licences ${MOCAPLINK_CROSS_ROOT}/share/licenses/*.copyright)
+  list(FILTER licences EXCLUDE REGEX "googletest")  # the tests' framework, not in mocaplink.exe
   install(FILES ${licences} DESTINATION licenses)
   install(FILES /usr/share/doc/mingw-w64-x86-64-dev/copyright DESTINATION licenses
           RENAME mingw-w64-runtime.copyright)
