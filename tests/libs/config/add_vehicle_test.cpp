@@ -162,7 +162,8 @@ source = "sim://"
 [[vehicle]]
 name = "radio"
 body = "Body1"
-link = ")") + testing_support::kSerialUrlPrefix + R"(?baud=57600"
+link = ")") + testing_support::kSerialUrlPrefix +
+                            R"(?baud=57600"
 system_id = 1
 profile = "px4"
 rate_hz = )" + rate + "\n",
