@@ -84,7 +84,8 @@ StationSnapshot Station::snapshot(HostTime now) const {
   std::optional<Duration> shift;
   double offset_sum_ms = 0.0;
   double offset_sum_sq_ms2 = 0.0;
-  for (const Arrival& a : window_) {
+  for (std::size_t i = 0; i < window_.size(); ++i) {
+    const Arrival& a = window_[i];
     if (a.received <= now - config_.window || a.received > now) continue;
     ++n;
     if (!oldest) oldest = a.received;

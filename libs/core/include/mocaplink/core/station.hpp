@@ -26,7 +26,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -35,6 +34,7 @@
 #include <Eigen/Geometry>
 
 #include "mocaplink/core/mocap_frame.hpp"
+#include "mocaplink/core/ring.hpp"
 #include "mocaplink/core/time.hpp"
 
 namespace mocaplink::core {
@@ -109,7 +109,7 @@ class Station {
   bool connected_ = false;
   bool continuity_ = false;  // last_frame_number_ is comparable with the next frame's
   StationSnapshot totals_;   // cumulative fields; window fields are computed in snapshot()
-  std::deque<Arrival> window_;
+  Ring<Arrival> window_;     // grows to the window's frames, then allocates no more
   std::unordered_map<std::string, std::size_t> body_index_;
 };
 
