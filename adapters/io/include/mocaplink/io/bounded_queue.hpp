@@ -8,15 +8,17 @@
 // freshest sample is worth most, and a stalled consumer must not grow memory without bound.
 // push() returns true only on the empty → non-empty transition, so the producer posts at most
 // one wake-up per batch instead of one per item.
+// Memory: a ring that grows to `capacity` items and then allocates no more (core::Ring).
 // Thread-safety: push/drain/size/overflows may be called from any thread.
 #pragma once
 
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <mutex>
 #include <vector>
+
+#include "mocaplink/core/ring.hpp"
 
 namespace mocaplink::io {
 
@@ -43,7 +45,7 @@ class BoundedQueue {
   std::size_t drain(std::vector<T>& out) {
     const std::lock_guard lock(mutex_);
     const std::size_t n = items_.size();
-    for (auto& item : items_) out.push_back(std::move(item));
+    for (std::size_t i = 0; i < n; ++i) out.push_back(std::move(items_[i]));
     items_.clear();
     return n;
   }
@@ -61,7 +63,7 @@ class BoundedQueue {
  private:
   const std::size_t capacity_;
   mutable std::mutex mutex_;
-  std::deque<T> items_;  // guarded by mutex_
+  core::Ring<T> items_;  // guarded by mutex_; no allocation once it has held capacity_ items
   std::atomic<std::uint64_t> overflows_{0};
 };
 
