@@ -10,8 +10,10 @@
 // (LinkCounters) and the link keeps sending, reconnects or reopens as its kind allows.
 //
 // Threading: a link lives on one asio::io_context; every member function and every callback runs
-// on that context's thread. The io_context must not run handlers after the link is destroyed
-// (destroy links after the loop has stopped).
+// on that context's thread — with one exception: a link whose sends_in_place() is true may have
+// send()/send_batch() called on another thread while the context's thread waits for that call to
+// return (io::ForkJoin), one thread per link at a time. The io_context must not run handlers
+// after the link is destroyed (destroy links after the loop has stopped).
 #pragma once
 
 #include <chrono>
@@ -109,6 +111,10 @@ class Link {
   /// Stops receiving and reconnecting. Stream links try to write what is queued for at most
   /// `linger` before the socket closes; UDP sends synchronously, so nothing is pending.
   virtual void close(std::chrono::milliseconds linger = std::chrono::milliseconds{0}) = 0;
+  /// True when send() and send_batch() finish their work inside the call, without the event loop
+  /// (UDP: one synchronous non-blocking system call), so they may run on another thread while the
+  /// loop's thread waits (see "Threading" above). Stream links queue and write from the loop.
+  [[nodiscard]] virtual bool sends_in_place() const noexcept { return false; }
   /// Bytes accepted by send() but not yet written (0 for UDP).
   [[nodiscard]] virtual std::size_t backlog_bytes() const noexcept = 0;
   /// The URL the link was made from ("udp://127.0.0.1:14550").

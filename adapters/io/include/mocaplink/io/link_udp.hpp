@@ -32,10 +32,12 @@ class UdpLink final : public Link {
   void start(FrameHandler on_frame, StateHandler on_state) override;
   bool send(std::span<const std::uint8_t> frame) override;
   /// sendmmsg: one system call for up to kMaxBatch frames; whatever the OS refuses in the batch
-  /// (an ICMP error, a full buffer) goes through send() again, so it is counted the same way.
+  /// (an ICMP error, a full buffer) goes through send() again, so it is counted the same way. A
+  /// single frame goes through send(), which costs the kernel less than a sendmmsg of one.
   std::size_t send_batch(std::span<const std::span<const std::uint8_t>> frames) override;
   static constexpr std::size_t kMaxBatch = 16;
   void close(std::chrono::milliseconds linger) override;
+  [[nodiscard]] bool sends_in_place() const noexcept override { return true; }
   [[nodiscard]] std::size_t backlog_bytes() const noexcept override { return 0; }
   [[nodiscard]] std::string url() const override;
 
