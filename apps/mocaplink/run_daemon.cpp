@@ -19,7 +19,9 @@
 #include "mocaplink/core/bridge.hpp"
 #include "mocaplink/io/bounded_queue.hpp"
 #include "mocaplink/io/clock.hpp"
+#include "mocaplink/io/fork_join.hpp"
 #include "mocaplink/io/link_udp.hpp"
+#include "mocaplink/io/send_threads.hpp"
 #include "mocaplink/io/signals.hpp"
 #include "mocaplink/io/signing_store.hpp"
 #include "mocaplink/mavlink/frame.hpp"
@@ -53,6 +55,14 @@ constexpr auto kRetireAfter = kLinger + 2s;
 /// oldest (io/bounded_queue.hpp) and is reported in the summary.
 constexpr std::size_t kQueueCapacity = 256;
 
+/// io::max_send_threads(), its warning logged.
+std::size_t max_send_threads_logged() {
+  std::string warning;
+  const std::size_t threads = io::max_send_threads(&warning);
+  if (!warning.empty()) spdlog::warn("{}", warning);
+  return threads;
+}
+
 struct QueuedFrame {
   core::MocapFrame frame;
   core::HostTime received;
@@ -68,6 +78,7 @@ class Daemon {
         recorder_(std::move(recorder)),
         queue_(kQueueCapacity),
         store_(settings.state_dir),
+        send_pool_(max_send_threads_logged()),
         tick_timer_(loop_),
         flush_timer_(loop_),
         signing_timer_(loop_),
@@ -112,6 +123,15 @@ class Daemon {
   io::SigningStore store_;
   std::vector<VehicleLink> vehicles_;  // by vehicle slot, as in the Bridge; empty: link == nullptr
   std::vector<Retired> retired_;       // links of removed vehicles, closed, not yet destroyed
+  /// One vehicle's messages in a BridgeOutput: messages[first, end).
+  struct VehicleRun {
+    std::size_t vehicle;
+    std::size_t first;
+    std::size_t end;
+  };
+  std::vector<VehicleRun> runs_;  // dispatch()'s, kept for its capacity
+  io::ForkJoin send_pool_;        // the threads that share a frame's sends (io/send_threads.hpp)
+  std::size_t most_send_threads_ = 1;  // the most send_pool_ threads used at once so far (logged)
   asio::steady_timer tick_timer_;
   asio::steady_timer flush_timer_;
   asio::steady_timer signing_timer_;
@@ -358,26 +378,56 @@ void Daemon::drain() {
 }
 
 void Daemon::dispatch(const core::BridgeOutput& out) {
+  // A vehicle's messages are consecutive: each run goes to its link in batches (one sendmmsg per
+  // batch for UDP), in order.
+  const auto& messages = out.messages;
+  runs_.clear();
+  for (std::size_t first = 0, end = 0; first < messages.size(); first = end) {
+    end = first + 1;
+    while (end < messages.size() && messages[end].vehicle == messages[first].vehicle) ++end;
+    const std::size_t vehicle = messages[first].vehicle;
+    if (vehicle < vehicles_.size() && vehicles_[vehicle].link) {
+      runs_.push_back(VehicleRun{vehicle, first, end});
+    }
+  }
+  const auto send_run = [&](const VehicleRun& run) {
+    std::array<std::span<const std::uint8_t>, io::UdpLink::kMaxBatch> batch;
+    for (std::size_t k = run.first; k < run.end;) {
+      std::size_t n = 0;
+      while (k < run.end && n < batch.size()) batch[n++] = messages[k++].frame.bytes();
+      (void)vehicles_[run.vehicle].link->send_batch({batch.data(), n});
+    }
+  };
+  // One thread sends up to kVehiclesPerSendThread vehicles; more are spread over send_pool_'s
+  // threads, run i on thread i mod threads. Every run of a frame has left before the next frame is
+  // looked at (ForkJoin returns when all threads are done), so each vehicle still gets its
+  // messages in order. Links that cannot send in place (TCP, serial) stay on this thread (part 0).
+  const std::size_t threads = io::send_threads_for(runs_.size(), send_pool_.max_parts());
+  if (threads > most_send_threads_) {
+    most_send_threads_ = threads;
+    spdlog::info("sending from {} threads ({} vehicles at once; one thread per {}, at most {})",
+                 threads, runs_.size(), io::kVehiclesPerSendThread, send_pool_.max_parts());
+  }
+  if (threads == 1) {
+    for (const auto& run : runs_) send_run(run);
+  } else {
+    send_pool_.run(threads, [&](std::size_t part) {
+      for (std::size_t i = 0; i < runs_.size(); ++i) {
+        const VehicleRun& run = runs_[i];
+        const bool in_place = vehicles_[run.vehicle].link->sends_in_place();
+        if (in_place ? i % threads == part : part == 0) send_run(run);
+      }
+    });
+  }
+  // What was sent: the recording and the signing clock, on this thread.
   const bool recording = recorder_ != nullptr;
   const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
-  const auto& messages = out.messages;
-  // A vehicle's messages are consecutive: each run goes to its link in one batch (one sendmmsg
-  // for UDP), in order.
-  std::array<std::span<const std::uint8_t>, io::UdpLink::kMaxBatch> batch;
-  for (std::size_t first = 0, end = 0; first < messages.size(); first = end) {
-    const std::size_t vehicle = messages[first].vehicle;
-    end = first;
-    while (end < messages.size() && messages[end].vehicle == vehicle &&
-           end - first < batch.size()) {
-      batch[end - first] = messages[end].frame.bytes();
-      ++end;
-    }
-    if (vehicle >= vehicles_.size() || !vehicles_[vehicle].link) continue;
-    auto& v = vehicles_[vehicle];
-    (void)v.link->send_batch({batch.data(), end - first});
-    for (std::size_t k = first; k < end; ++k) {
+  for (const auto& run : runs_) {
+    auto& v = vehicles_[run.vehicle];
+    if (!recording && !v.signing) continue;
+    for (std::size_t k = run.first; k < run.end; ++k) {
       const auto bytes = messages[k].frame.bytes();
-      if (recording) recorder_->on_mavlink(vehicle, unix_us, bytes);
+      if (recording) recorder_->on_mavlink(run.vehicle, unix_us, bytes);
       if (v.signing) {
         // The signature block of the frame we encoded (mavlink-wire.md §7.1), read by the codec.
         const auto view = mavlink::parse_frame(bytes);
