@@ -6,6 +6,6 @@ mocaplink_warnings(e2e_receivers)
 # The floor mocaplink is measured against (issue 15): the same source and loop hand-off, one
 # pre-encoded datagram per vehicle, nothing else. run_e2e.sh runs both and prints the ratios.
 add_executable(e2e_floor ${CMAKE_CURRENT_SOURCE_DIR}/e2e/e2e_floor.cpp)
-target_link_libraries(e2e_floor PRIVATE mocaplink::core mocaplink::mavlink
+target_link_libraries(e2e_floor PRIVATE mocaplink::core mocaplink::mavlink mocaplink::io
                       mocaplink::source_registry mocaplink_asio)
 mocaplink_warnings(e2e_floor)

@@ -1,12 +1,16 @@
 // bench/e2e floor: the least any bridge can do with the same input, to measure mocaplink against
-// (issue 15). It opens the same source as `mocaplink run` (the [mocap] source of the e2e
-// receivers' configuration, through the same source registry and source thread), hands each frame
-// to a loop thread the same way (asio::post onto an io_context), and there sends one datagram per
-// vehicle: a copy of one ODOMETRY frame encoded once at start (the same size as mocaplink's), with
-// only time_usec changed to the frame's host capture time (core::CaptureTimeMapper, as the bridge
-// stamps it). No tracking, no decimation, no encoding, no logic.
+// (issue 15). It has the daemon's structure and nothing else: it opens the same source as
+// `mocaplink run` (the [mocap] source of the e2e receivers' configuration, through the same source
+// registry and source thread), hands each frame to a loop thread the same way (the same bounded
+// queue, 256 frames, oldest dropped and counted, and one asio::post per batch), and there sends
+// one datagram per vehicle on its own connected UDP socket, from as many threads as the daemon
+// would use for that many vehicles (io::send_threads_for, io::ForkJoin; MOCAPLINK_SEND_THREADS
+// applies alike): a copy of one ODOMETRY frame encoded once at start (the same size as
+// mocaplink's), with only time_usec changed to the frame's host capture time
+// (core::CaptureTimeMapper, as the bridge stamps it). No tracking, no decimation, no encoding, no
+// logic.
 // Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT and
-// prints "floor: N frames" on stderr)
+// prints "floor: N frames, M queue overflows, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -27,6 +31,9 @@
 #include <asio/signal_set.hpp>
 
 #include "mocaplink/core/sender_clock.hpp"
+#include "mocaplink/io/bounded_queue.hpp"
+#include "mocaplink/io/fork_join.hpp"
+#include "mocaplink/io/send_threads.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/mavlink/messages.hpp"
 #include "mocaplink/sources/registry.hpp"
@@ -104,22 +111,49 @@ int main(int argc, char** argv) {
     loop.stop();
   });
   mocaplink::core::CaptureTimeMapper mapper;
+  struct Queued {
+    mocaplink::core::SourceTime capture;
+    std::optional<mocaplink::core::Duration> latency;
+    mocaplink::core::HostTime received;
+  };
+  mocaplink::io::BoundedQueue<Queued> queue(256);  // run_daemon.cpp's kQueueCapacity
+  std::vector<Queued> batch;
+  std::string warning;
+  mocaplink::io::ForkJoin pool(mocaplink::io::max_send_threads(&warning));
+  if (!warning.empty()) std::fprintf(stderr, "e2e_floor: %s\n", warning.c_str());
+  const std::size_t threads = mocaplink::io::send_threads_for(sockets.size(), pool.max_parts());
+  std::vector<std::array<std::uint8_t, mocaplink::mavlink::kMaxFrameSize>> datagrams(threads,
+                                                                                     datagram);
   std::uint64_t frames = 0;
+  const auto drain = [&] {
+    batch.clear();
+    queue.drain(batch);
+    for (const Queued& f : batch) {
+      ++frames;
+      const std::uint64_t time_usec =
+          mocaplink::core::host_time_usec(mapper.on_frame(f.capture, f.received, f.latency));
+      pool.run(threads, [&](std::size_t part) {
+        auto& bytes = datagrams[part];
+        for (std::size_t b = 0; b < 8; ++b) {
+          bytes[10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
+        }
+        for (std::size_t v = part; v < sockets.size(); v += threads) {
+          (void)::send(sockets[v], bytes.data(), size, 0);
+        }
+      });
+    }
+  };
   source->start(
       [&](mocaplink::core::MocapFrame f, mocaplink::core::HostTime received) {
-        asio::post(loop, [&, capture = f.capture_time, latency = f.source_latency, received] {
-          ++frames;
-          const std::uint64_t time_usec =
-              mocaplink::core::host_time_usec(mapper.on_frame(capture, received, latency));
-          for (std::size_t b = 0; b < 8; ++b) {
-            datagram[10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
-          }
-          for (const int fd : sockets) (void)::send(fd, datagram.data(), size, 0);
-        });
+        if (queue.push(Queued{f.capture_time, f.source_latency, received})) {
+          asio::post(loop, drain);
+        }
       },
       [](mocaplink::sources::SourceState, const std::string&) {});
   loop.run();
-  std::fprintf(stderr, "floor: %llu frames, %zu-byte datagrams\n",
-               static_cast<unsigned long long>(frames), size);
+  std::fprintf(stderr,
+               "floor: %llu frames, %llu queue overflows, %zu-byte datagrams, %zu threads\n",
+               static_cast<unsigned long long>(frames),
+               static_cast<unsigned long long>(queue.overflows()), size, threads);
   return 0;
 }

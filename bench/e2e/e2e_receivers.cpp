@@ -1,12 +1,19 @@
 // bench/e2e receivers: N UDP "vehicles" on loopback for `mocaplink run`. Binds N sockets, writes a
 // run configuration (sim:// source at --mocap-hz, one px4 vehicle per socket at --rate-hz, bodies
-// shared round-robin), then counts every ODOMETRY per socket and its latency: CLOCK_MONOTONIC at
-// receive − the frame's time_usec (the pose's capture time on the bridge's steady clock, which is
-// CLOCK_MONOTONIC too: one host clock, docs/performance.md "End to end"). Stops when nothing has
-// arrived for 1.5 s after the first datagram (the bridge was stopped), and prints one JSON line.
+// shared round-robin), then counts every ODOMETRY per socket and its latency: the kernel's receive
+// time of the datagram (SO_TIMESTAMPNS: when it reached the socket, as a vehicle's network stack
+// would have it) − the frame's time_usec (the pose's capture time on the bridge's steady clock,
+// CLOCK_MONOTONIC: docs/performance.md "End to end"; the kernel stamps CLOCK_REALTIME, turned
+// into CLOCK_MONOTONIC with the two clocks' offset read at each poll).
+// The receivers stand in for vehicles, which are other machines: to cost the machine under test as
+// little as they can, they never sleep on the sockets (a sender waking a receiver per datagram
+// would pay the wake-up inside its send) but poll every --poll-ms and read whatever arrived with
+// recvmmsg. The kernel's timestamps make the latency independent of the polling.
+// Stops when nothing has arrived for --idle-s after the first datagram (the bridge was stopped),
+// and prints one JSON line.
 // Usage: e2e_receivers --vehicles N --config OUT.toml [--seconds 30] [--rate-hz 240]
 //                      [--mocap-hz 240] [--bodies 64] [--source URL] [--http ADDR]
-//                      [--first-address 127.0.0.2] [--report-s S] [--idle-s 1.5]
+//                      [--first-address 127.0.0.2] [--report-s S] [--idle-s 1.5] [--poll-ms 2]
 // --source replaces the sim:// source, --http adds a dashboard, --first-address binds vehicle 1 to
 // another loopback address (bench/soak black-holes it), --report-s also prints one JSON line every
 // S seconds with what arrived in that interval (bench/soak), --idle-s is the silence that ends it.
@@ -15,6 +22,7 @@
 #include <netinet/in.h>
 #include <sys/epoll.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -29,10 +37,22 @@
 
 namespace {
 
-std::int64_t monotonic_us() {
+std::int64_t clock_ns(clockid_t clock) {
   timespec ts{};
-  ::clock_gettime(CLOCK_MONOTONIC, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000 + ts.tv_nsec / 1000;
+  ::clock_gettime(clock, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+std::int64_t monotonic_us() {
+  return clock_ns(CLOCK_MONOTONIC) / 1000;
+}
+
+/// CLOCK_REALTIME − CLOCK_MONOTONIC now (ns): the kernel stamps datagrams on the first.
+std::int64_t realtime_minus_monotonic_ns() {
+  const std::int64_t before = clock_ns(CLOCK_MONOTONIC);
+  const std::int64_t real = clock_ns(CLOCK_REALTIME);
+  const std::int64_t after = clock_ns(CLOCK_MONOTONIC);
+  return real - (before + (after - before) / 2);
 }
 
 double percentile(std::vector<std::int64_t>& v, double p) {
@@ -56,6 +76,7 @@ int main(int argc, char** argv) {
   std::string first_address = "127.0.0.1";
   double report_s = 0.0;
   double idle_s = 1.5;
+  double poll_ms = 2.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     const char* value = argv[i + 1];
@@ -70,6 +91,7 @@ int main(int argc, char** argv) {
     if (key == "--first-address") first_address = value;
     if (key == "--report-s") report_s = std::atof(value);
     if (key == "--idle-s") idle_s = std::atof(value);
+    if (key == "--poll-ms") poll_ms = std::atof(value);
   }
   if (vehicles < 1 || config_path.empty()) {
     std::fprintf(stderr, "usage: e2e_receivers --vehicles N --config OUT.toml [...]\n");
@@ -90,6 +112,11 @@ int main(int argc, char** argv) {
     const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
     const int buffer = 1 << 20;
     ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
+    const int on = 1;
+    if (::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on) != 0) {
+      std::perror("SO_TIMESTAMPNS");
+      return 1;
+    }
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
@@ -123,8 +150,12 @@ int main(int argc, char** argv) {
   if (report_s <= 0.0) {
     latencies_us.reserve(static_cast<std::size_t>(vehicles * rate_hz * seconds * 1.1));
   }
-  std::array<epoll_event, 256> events{};
-  std::array<std::uint8_t, 2048> buffer{};
+  std::array<epoll_event, 1024> events{};
+  constexpr std::size_t kBatch = 16;
+  std::array<std::array<std::uint8_t, 2048>, kBatch> buffers{};
+  std::array<std::array<char, CMSG_SPACE(sizeof(timespec))>, kBatch> controls{};
+  std::array<iovec, kBatch> iov{};
+  std::array<mmsghdr, kBatch> msgs{};
   std::int64_t first_us = 0;
   std::int64_t last_us = 0;
   const auto idle_us = static_cast<std::int64_t>(idle_s * 1e6);
@@ -152,31 +183,66 @@ int main(int argc, char** argv) {
       std::fill(interval_odometry.begin(), interval_odometry.end(), 0);
       interval_latencies_us.clear();
     }
-    const int n = ::epoll_wait(epoll, events.data(), static_cast<int>(events.size()), 100);
-    for (int e = 0; e < n; ++e) {
-      const std::uint32_t v = events[static_cast<std::size_t>(e)].data.u32;
-      while (true) {
-        const ssize_t got = ::recv(sockets[v], buffer.data(), buffer.size(), 0);
-        if (got <= 0) break;
-        const std::int64_t now_us = monotonic_us();
-        if (first_us == 0) first_us = now_us;
-        last_us = now_us;
-        // MAVLink 2 ODOMETRY (id 331): time_usec is the first payload field (uint64 LE, at 10).
-        if (got < 18 || buffer[0] != 0xFD) continue;
-        const std::uint32_t msgid = std::uint32_t{buffer[7]} | (std::uint32_t{buffer[8]} << 8) |
-                                    (std::uint32_t{buffer[9]} << 16);
-        if (msgid != 331) continue;
-        std::uint64_t time_usec = 0;
-        for (std::size_t b = 0; b < 8; ++b) time_usec |= std::uint64_t{buffer[10 + b]} << (8 * b);
-        ++odometry[v];
-        const std::int64_t latency_us = now_us - static_cast<std::int64_t>(time_usec);
-        if (report_us > 0) {  // an hour of samples would not fit: per interval only
-          ++interval_odometry[v];
-          interval_latencies_us.push_back(latency_us);
-        } else {
-          latencies_us.push_back(latency_us);
+    // Sleep, then read whatever arrived (no wake-up per datagram: see the header).
+    const timespec pause{0, static_cast<long>(poll_ms * 1e6)};
+    ::nanosleep(&pause, nullptr);
+    const std::int64_t offset_ns = realtime_minus_monotonic_ns();
+    while (true) {
+      const int n = ::epoll_wait(epoll, events.data(), static_cast<int>(events.size()), 0);
+      if (n <= 0) break;
+      for (int e = 0; e < n; ++e) {
+        const std::uint32_t v = events[static_cast<std::size_t>(e)].data.u32;
+        while (true) {
+          for (std::size_t m = 0; m < kBatch; ++m) {
+            iov[m] = iovec{buffers[m].data(), buffers[m].size()};
+            msgs[m].msg_hdr = msghdr{};
+            msgs[m].msg_hdr.msg_iov = &iov[m];
+            msgs[m].msg_hdr.msg_iovlen = 1;
+            msgs[m].msg_hdr.msg_control = controls[m].data();
+            msgs[m].msg_hdr.msg_controllen = controls[m].size();
+          }
+          const int got = ::recvmmsg(sockets[v], msgs.data(), kBatch, MSG_DONTWAIT, nullptr);
+          if (got <= 0) break;
+          const std::int64_t now_us = monotonic_us();
+          if (first_us == 0) first_us = now_us;
+          last_us = now_us;
+          for (int m = 0; m < got; ++m) {
+            const auto& buffer = buffers[static_cast<std::size_t>(m)];
+            const std::size_t size = msgs[static_cast<std::size_t>(m)].msg_len;
+            // MAVLink 2 ODOMETRY (id 331): time_usec is the first payload field (uint64 LE, at 10).
+            if (size < 18 || buffer[0] != 0xFD) continue;
+            const std::uint32_t msgid = std::uint32_t{buffer[7]} | (std::uint32_t{buffer[8]} << 8) |
+                                        (std::uint32_t{buffer[9]} << 16);
+            if (msgid != 331) continue;
+            std::uint64_t time_usec = 0;
+            for (std::size_t b = 0; b < 8; ++b) {
+              time_usec |= std::uint64_t{buffer[10 + b]} << (8 * b);
+            }
+            // The kernel's receive time; without one (never expected) the read time.
+            std::int64_t received_us = now_us;
+            msghdr& header = msgs[static_cast<std::size_t>(m)].msg_hdr;
+            for (cmsghdr* c = CMSG_FIRSTHDR(&header); c != nullptr; c = CMSG_NXTHDR(&header, c)) {
+              if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
+                timespec ts{};
+                std::memcpy(&ts, CMSG_DATA(c), sizeof ts);
+                const std::int64_t real_ns =
+                    static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+                received_us = (real_ns - offset_ns) / 1000;
+              }
+            }
+            ++odometry[v];
+            const std::int64_t latency_us = received_us - static_cast<std::int64_t>(time_usec);
+            if (report_us > 0) {  // an hour of samples would not fit: per interval only
+              ++interval_odometry[v];
+              interval_latencies_us.push_back(latency_us);
+            } else {
+              latencies_us.push_back(latency_us);
+            }
+          }
+          if (static_cast<std::size_t>(got) < kBatch) break;
         }
       }
+      if (n < static_cast<int>(events.size())) break;
     }
   }
   std::uint64_t total = 0;

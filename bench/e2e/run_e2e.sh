@@ -4,7 +4,7 @@
 # per vehicle, no logic) in the same run, right before mocaplink for each N.
 # Prints one markdown table row per N: mocap frames, ODOMETRY lost, latency p50/p99 of the floor
 # and of mocaplink (frame's host capture time → datagram received, CLOCK_MONOTONIC), mocaplink's
-# ratio to the floor, mocaplink's CPU (user+sys as % of one core) and peak RSS.
+# ratio to the floor, the CPU of both (user+sys as % of one core) and mocaplink's peak RSS.
 # Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN FLOOR_BIN [SECONDS] [N...]
 # NICE=-10 runs every process at that priority (a shared, busy machine; needs root).
 # LOAD=compile keeps one compiler busy for the whole run (the other core loaded by a build).
@@ -50,7 +50,8 @@ measure() {
   read -r user sys wall rss_kb < "$work/time.out"
   frames=$(sed -n -e 's/.*final: source [^ ]*: [a-z ]*, \([0-9]*\) frames.*/\1/p' \
     -e 's/^floor: \([0-9]*\) frames.*/\1/p' "$work/run.err")
-  overflows=$(sed -n 's/.*final: source .* \([0-9]*\) queue overflows.*/\1/p' "$work/run.err")
+  overflows=$(sed -n -e 's/.*final: source .* \([0-9]*\) queue overflows.*/\1/p' \
+    -e 's/^floor: [0-9]* frames, \([0-9]*\) queue overflows.*/\1/p' "$work/run.err")
   node -e '
     const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8").split("\n")[1]);
     const [frames, user, sys, wall, rss] = process.argv.slice(2).map(Number);
@@ -59,17 +60,19 @@ measure() {
   ' "$work/recv.out" "$((frames + ${overflows:-0}))" "$user" "$sys" "$wall" "$rss_kb"
 }
 
-echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | CPU | peak RSS |"
+echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | CPU floor / mocaplink | peak RSS |"
 echo "|---:|---:|---:|---|---|---|---:|---:|"
 for n in "${counts[@]}"; do
-  read -r ff fr fp50 fp99 _ _ < <(measure "$n" "$floor")
+  read -r ff fr fp50 fp99 fcpu _ < <(measure "$n" "$floor")
   read -r mf mr mp50 mp99 cpu rss < <(measure "$n" "$bin" run)
   node -e '
-    const [n, ff, fr, fp50, fp99, mf, mr, mp50, mp99, cpu, rss] = process.argv.slice(1).map(Number);
+    const [n, ff, fr, fp50, fp99, fcpu, mf, mr, mp50, mp99, cpu, rss] =
+      process.argv.slice(1).map(Number);
     const lost = (frames, got) => `${(100 * (1 - got / (n * frames))).toFixed(3)} %`;
     const ms = (us) => (us / 1000).toFixed(2);
     const ratio = (a, b) => (b > 0 ? (a / b).toFixed(2) : "–");
     console.log(`| ${n} | ${mf} | ${lost(ff, fr)} / ${lost(mf, mr)} | ${ms(fp50)} / ${ms(fp99)} ms | ` +
-      `${ms(mp50)} / ${ms(mp99)} ms | ${ratio(mp50, fp50)} / ${ratio(mp99, fp99)} | ${cpu} % | ${rss} MiB |`);
-  ' "$n" "$ff" "$fr" "$fp50" "$fp99" "$mf" "$mr" "$mp50" "$mp99" "$cpu" "$rss"
+      `${ms(mp50)} / ${ms(mp99)} ms | ${ratio(mp50, fp50)} / ${ratio(mp99, fp99)} | ` +
+      `${fcpu} / ${cpu} % | ${rss} MiB |`);
+  ' "$n" "$ff" "$fr" "$fp50" "$fp99" "$fcpu" "$mf" "$mr" "$mp50" "$mp99" "$cpu" "$rss"
 done
