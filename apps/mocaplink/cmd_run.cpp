@@ -3,14 +3,20 @@
 // --source nor --vehicle: the demo (simulated source, one vehicle at udp://127.0.0.1:14550).
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "commands.hpp"
 #include "mocaplink/config/net_address.hpp"
+#include "mocaplink/io/rotating_file.hpp"
 #include "mocaplink/io/signing_store.hpp"
 #include "run_config.hpp"
 #include "run_daemon.hpp"
@@ -18,9 +24,47 @@
 namespace mocaplink::app {
 namespace {
 
-/// Logs go to stderr with a level; MOCAPLINK_LOG_LEVEL=trace|debug|info|warn|error|off.
-void setup_logging() {
-  auto logger = spdlog::stderr_color_mt("mocaplink");
+/// A spdlog sink into an io::RotatingFile (the Windows log file; see setup_logging).
+class RotatingFileSink final : public spdlog::sinks::base_sink<std::mutex> {
+ public:
+  explicit RotatingFileSink(std::unique_ptr<io::RotatingFile> file) : file_(std::move(file)) {}
+
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    spdlog::memory_buf_t line;
+    formatter_->format(msg, line);
+    file_->write(std::string_view(line.data(), line.size()));
+  }
+  void flush_() override { file_->flush(); }
+
+ private:
+  std::unique_ptr<io::RotatingFile> file_;
+};
+
+/// Log file size and how many older files are kept (Windows): at most 4 × 10 MiB.
+constexpr std::size_t kLogFileBytes = 10 * 1024 * 1024;
+constexpr std::size_t kLogFilesKept = 3;
+
+/// Logs go to stderr with a level; MOCAPLINK_LOG_LEVEL=trace|debug|info|warn|error|off. On
+/// Windows also to STATE_DIR\logs\mocaplink.log (%LOCALAPPDATA%\mocaplink\logs by default):
+/// there is no journal there, and a closed console window takes its text with it.
+void setup_logging(const std::filesystem::path& state_dir) {
+  std::vector<spdlog::sink_ptr> sinks{std::make_shared<spdlog::sinks::stderr_color_sink_mt>()};
+  std::string file_problem;
+  std::filesystem::path log_file;
+#ifdef _WIN32
+  auto file = std::make_unique<io::RotatingFile>(state_dir / "logs" / "mocaplink.log",
+                                                 kLogFileBytes, kLogFilesKept);
+  if (file->ok()) {
+    log_file = file->path();
+    sinks.push_back(std::make_shared<RotatingFileSink>(std::move(file)));
+  } else {
+    file_problem = file->error();
+  }
+#else
+  (void)state_dir;
+#endif
+  auto logger = std::make_shared<spdlog::logger>("mocaplink", sinks.begin(), sinks.end());
   logger->set_pattern("%Y-%m-%d %H:%M:%S.%e %^%l%$ %v");
   auto level = spdlog::level::info;
   if (const char* text = std::getenv("MOCAPLINK_LOG_LEVEL"); text != nullptr && *text != '\0') {
@@ -29,6 +73,8 @@ void setup_logging() {
   logger->set_level(level);
   logger->flush_on(spdlog::level::warn);
   spdlog::set_default_logger(std::move(logger));
+  if (!log_file.empty()) spdlog::info("log file: {}", log_file.string());
+  if (!file_problem.empty()) spdlog::warn("no log file: {}", file_problem);
 }
 
 /// MOCAPLINK_SUMMARY_S: seconds between summary lines (default 10; tests use less).
@@ -46,11 +92,11 @@ std::chrono::milliseconds summary_period() {
 int run_command(const RunOptions& options, const sources::SourceRegistry& sources) {
   auto config = load_run_config(options, sources.validator(), stderr);
   if (!config) return kExitBadInput;
-  setup_logging();
   DaemonSettings settings;
+  settings.state_dir = io::default_state_dir();
+  setup_logging(settings.state_dir);
   settings.config = std::move(*config);
   if (options.record_dir) settings.record_dir = *options.record_dir;
-  settings.state_dir = io::default_state_dir();
   settings.summary_period = summary_period();
   settings.http_requested = options.http.has_value();
   spdlog::info("mocaplink {}: source {}, {} vehicle{}", MOCAPLINK_VERSION,

@@ -40,7 +40,7 @@ using namespace std::chrono_literals;
 
 /// Bridge::on_tick cadence (bridge.hpp asks for about 100 ms).
 constexpr auto kTickPeriod = 100ms;
-/// Recording files are flushed this often: a crash loses at most this much.
+/// Recording files and the log are flushed this often: a crash loses at most this much.
 constexpr auto kFlushPeriod = 1s;
 /// Signing timestamps are persisted this often (mavlink-wire.md §7.3: at least once a minute).
 constexpr auto kSigningSavePeriod = 30s;
@@ -531,6 +531,7 @@ int Daemon::run() {
   });
   every(flush_timer_, kFlushPeriod, [this] {
     if (recorder_) recorder_->flush();
+    spdlog::default_logger()->flush();  // a log file (Windows) loses at most this much
   });
   every(signing_timer_, kSigningSavePeriod, [this] { save_signing(); });
   every(summary_timer_, settings_.summary_period, [this] {

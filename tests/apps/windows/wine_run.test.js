@@ -3,7 +3,8 @@
 // cleanly. The configuration sits in a directory with spaces in its name, `check` reports a Linux
 // serial device with file:line and the Windows form, and the signing state is written on the
 // clean stop to %LOCALAPPDATA%\mocaplink — Wine's own %LOCALAPPDATA% (it sets the variable from
-// its user profile, under the Wine prefix, whatever the Unix environment says).
+// its user profile, under the Wine prefix, whatever the Unix environment says) — and the log to
+// %LOCALAPPDATA%\mocaplink\logs\mocaplink.log.
 //
 // Wine turns a SIGINT to the process into the console's CTRL_C_EVENT, which the C runtime raises
 // as SIGINT — the same path a Ctrl-C in a Windows console takes.
@@ -23,9 +24,12 @@ async function main() {
   const dir = path.join(h.tempDir('wine'), 'lab files');
   fs.mkdirSync(dir, { recursive: true });
   const prefix = process.env.WINEPREFIX || path.join(os.homedir(), '.wine');
-  const state = path.join(prefix, 'drive_c', 'users', os.userInfo().username, 'AppData', 'Local',
-    'mocaplink', 'quad1.signing');
+  const appData = path.join(prefix, 'drive_c', 'users', os.userInfo().username, 'AppData', 'Local',
+    'mocaplink');
+  const state = path.join(appData, 'quad1.signing');
+  const log = path.join(appData, 'logs', 'mocaplink.log');
   fs.rmSync(state, { force: true });
+  fs.rmSync(log, { force: true });
   const vehicle = await new h.UdpVehicle().bind();
   const config = h.writeConfig(path.join(dir, 'lab config.toml'), 'sim://?bodies=1&rate_hz=100', [
     { name: 'quad1', body: 'Body1', link: `udp://127.0.0.1:${vehicle.port}`, profile: 'classic',
@@ -67,9 +71,15 @@ async function main() {
   assert.equal(code, 0, `exit ${code}\n${proc.stderr}`);
   assert.match(proc.stderr, /stopping: SIGINT/);
   assert.match(fs.readFileSync(state, 'utf8'), /^mocaplink-signing-timestamp 1 [1-9]\d*\n$/);
+  // The log is also in %LOCALAPPDATA%\mocaplink\logs (a closed console window keeps nothing),
+  // where the first lines say it is, and it holds the whole run down to the clean stop.
+  assert.match(proc.stderr, /log file: .*\\mocaplink\\logs\\mocaplink\.log/);
+  const logged = fs.readFileSync(log, 'utf8');
+  assert.match(logged, /info mocaplink [\d.]+: source sim:/);
+  assert.match(logged, /stopping: SIGINT/);
   vehicle.close();
   console.log(`ok: ${vehicle.packets.length} packets decoded, dashboard on ${port}, ` +
-    `clean stop on Ctrl-C, signing state in ${state}`);
+    `clean stop on Ctrl-C, signing state in ${state}, log in ${log}`);
 }
 
 main().catch(h.fail);
