@@ -24,7 +24,9 @@
 #include "socket_io.hpp"
 
 namespace mocaplink::web {
-namespace {
+// Named, not anonymous: DashboardServer::Impl holds a LimitedServer (GCC warns when a class
+// holds a member of an anonymous-namespace type outside the main file, as in a unity build).
+namespace dashboard_detail {
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
@@ -186,7 +188,9 @@ class LimitedServer final : public httplib::Server {
   std::atomic<std::uint64_t> timed_out_{0};
 };
 
-}  // namespace
+}  // namespace dashboard_detail
+
+using namespace dashboard_detail;  // NOLINT(google-build-using-namespace): this file's own helpers
 
 class DashboardServer::Impl {
  public:

@@ -6,18 +6,12 @@
 #include "mocaplink/sources/replay_options.hpp"
 #include "mocaplink/sources/sim_options.hpp"
 #include "mocaplink/sources/vicon_options.hpp"
+#include "url_test_support.hpp"
 
 namespace mocaplink::sources {
 namespace {
 
-/// Splits `url` (which must split) and hands it to `parse`; the URL text outlives the parts.
-template <typename Options>
-config::ValueOrError<Options> parse(config::ValueOrError<Options> (*parse)(const config::UrlParts&),
-                                    const std::string& url) {
-  auto parts = config::split_url(url);
-  EXPECT_TRUE(parts) << url;
-  return parse(parts.value());
-}
+using test::parse;
 
 ViconOptions vicon(const std::string& url) {
   auto parsed = parse(&parse_vicon_options, url);
@@ -37,9 +31,7 @@ ReplayOptions replay(const std::string& url) {
   return parsed ? parsed.value() : ReplayOptions{};
 }
 
-std::string error(const char* url) {
-  return builtin_sources().check(url).error;
-}
+using test::check_error;
 
 TEST(SourceUrl, ViconDefaultsAndOptions) {
   using wire::vicon::StreamMode;
@@ -57,7 +49,7 @@ TEST(SourceUrl, ViconDefaultsAndOptions) {
   const ViconOptions v6 = vicon("vicon://[::1]:9000");
   EXPECT_EQ(v6.host, "::1");
   EXPECT_EQ(v6.port, 9000);
-  EXPECT_EQ(error("vicon://h/x"), "vicon:// takes no path, got \"h/x\"");
+  EXPECT_EQ(check_error("vicon://h/x"), "vicon:// takes no path, got \"h/x\"");
 }
 
 TEST(SourceUrl, SimAndReplayDefaults) {
@@ -97,12 +89,14 @@ TEST(SourceUrl, EverySimAndReplayOptionTheSourcesTake) {
   EXPECT_EQ(defaults.occlude_s, 0.5);
   EXPECT_EQ(defaults.frames, 0u);
 
-  EXPECT_EQ(error("sim://?drop=1"), "drop must be a probability from 0 to below 1, got \"1\"");
-  EXPECT_EQ(error("sim://?occlude_s=0"), "occlude_s must be a number above 0 up to 60, got \"0\"");
-  EXPECT_EQ(error("sim://?seed=-1"),
+  EXPECT_EQ(check_error("sim://?drop=1"),
+            "drop must be a probability from 0 to below 1, got \"1\"");
+  EXPECT_EQ(check_error("sim://?occlude_s=0"),
+            "occlude_s must be a number above 0 up to 60, got \"0\"");
+  EXPECT_EQ(check_error("sim://?seed=-1"),
             "seed must be an integer from 0 to 9223372036854775807, got \"-1\"");
-  EXPECT_EQ(error("sim://?bodies=65"), "bodies must be an integer from 1 to 64, got \"65\"");
-  EXPECT_EQ(error("sim://?occlud=0.1"),
+  EXPECT_EQ(check_error("sim://?bodies=65"), "bodies must be an integer from 1 to 64, got \"65\"");
+  EXPECT_EQ(check_error("sim://?occlud=0.1"),
             "unknown option \"occlud\" for sim://; did you mean \"occlude\"? (options: bodies, "
             "rate_hz, noise_mm, noise_deg, seed, drop, occlude, occlude_s, outliers, outlier_m, "
             "frames, churn_s)");
@@ -110,32 +104,35 @@ TEST(SourceUrl, EverySimAndReplayOptionTheSourcesTake) {
   EXPECT_TRUE(replay("replay://f.csv?loop=1").loop);
   EXPECT_FALSE(replay("replay://f.csv").loop);
   EXPECT_EQ(replay("replay://f.csv?speed=0").speed, 0.0);
-  EXPECT_EQ(error("replay://f.csv?loop=yes"), "loop must be 0 or 1, got \"yes\"");
+  EXPECT_EQ(check_error("replay://f.csv?loop=yes"), "loop must be 0 or 1, got \"yes\"");
 }
 
 TEST(SourceUrl, ErrorsSayWhatIsWrong) {
-  EXPECT_EQ(error("192.168.1.3"),
+  EXPECT_EQ(check_error("192.168.1.3"),
             "\"192.168.1.3\" is not a source URL; expected SCHEME://..., where SCHEME is one of "
             "natnet, qtm, replay, sim, vicon, vicon-udp, vrpn");
-  EXPECT_EQ(error("optitrack://x"),
+  EXPECT_EQ(check_error("optitrack://x"),
             "unknown source scheme \"optitrack\" (one of: natnet, qtm, replay, sim, vicon, "
             "vicon-udp, vrpn)");
-  EXPECT_EQ(error("vicn://x"),
+  EXPECT_EQ(check_error("vicn://x"),
             "unknown source scheme \"vicn\"; did you mean \"vicon\"? (one of: natnet, qtm, "
             "replay, sim, vicon, vicon-udp, vrpn)");
-  EXPECT_EQ(error("vicon://h?mod=push"),
+  EXPECT_EQ(check_error("vicon://h?mod=push"),
             "unknown option \"mod\" for vicon://; did you mean \"mode\"? (options: mode)");
-  EXPECT_EQ(error("vicon://h?mode=fast"), "mode must be push, prefetch or pull, got \"fast\"");
-  EXPECT_EQ(error("vicon://h?mode=push&mode=pull"), "option \"mode\" is given twice");
-  EXPECT_EQ(error("vicon://"), "missing host in \"\"");
-  EXPECT_EQ(error("vicon://h:0"), "port must be 1..65535, got \"0\"");
-  EXPECT_EQ(error("sim://host"),
+  EXPECT_EQ(check_error("vicon://h?mode=fast"),
+            "mode must be push, prefetch or pull, got \"fast\"");
+  EXPECT_EQ(check_error("vicon://h?mode=push&mode=pull"), "option \"mode\" is given twice");
+  EXPECT_EQ(check_error("vicon://"), "missing host in \"\"");
+  EXPECT_EQ(check_error("vicon://h:0"), "port must be 1..65535, got \"0\"");
+  EXPECT_EQ(check_error("sim://host"),
             "sim:// takes no host or path, only options, as in sim://?bodies=3");
-  EXPECT_EQ(error("sim://?bodies=0"), "bodies must be an integer from 1 to 64, got \"0\"");
-  EXPECT_EQ(error("sim://?rate_hz=0"), "rate_hz must be a number above 0 up to 2000, got \"0\"");
-  EXPECT_EQ(error("sim://?noise_mm=nan"), "noise_mm must be a number from 0 to 1000, got \"nan\"");
-  EXPECT_EQ(error("replay://"), "replay:// needs a file, as in replay://flight.csv");
-  EXPECT_EQ(error("sim://?bodies"), "query item \"bodies\" is not KEY=VALUE");
+  EXPECT_EQ(check_error("sim://?bodies=0"), "bodies must be an integer from 1 to 64, got \"0\"");
+  EXPECT_EQ(check_error("sim://?rate_hz=0"),
+            "rate_hz must be a number above 0 up to 2000, got \"0\"");
+  EXPECT_EQ(check_error("sim://?noise_mm=nan"),
+            "noise_mm must be a number from 0 to 1000, got \"nan\"");
+  EXPECT_EQ(check_error("replay://"), "replay:// needs a file, as in replay://flight.csv");
+  EXPECT_EQ(check_error("sim://?bodies"), "query item \"bodies\" is not KEY=VALUE");
 }
 
 }  // namespace

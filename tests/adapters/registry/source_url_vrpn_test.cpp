@@ -5,23 +5,14 @@
 #include "mocaplink/sources/registry.hpp"
 #include "mocaplink/sources/vicon_udp_options.hpp"
 #include "mocaplink/sources/vrpn_options.hpp"
+#include "url_test_support.hpp"
 
 namespace mocaplink::sources {
 namespace {
 
-template <typename Options>
-Options parsed(config::ValueOrError<Options> (*parse)(const config::UrlParts&),
-               const std::string& url) {
-  auto parts = config::split_url(url);
-  EXPECT_TRUE(parts) << url;
-  auto out = parse(parts.value());
-  EXPECT_TRUE(out) << out.error();
-  return out ? out.value() : Options{};
-}
+using test::parsed;
 
-std::string error(const char* url) {
-  return builtin_sources().check(url).error;
-}
+using test::check_error;
 
 TEST(SourceUrlVrpn, DefaultsTrackersAndOptions) {
   const auto plain = parsed(&parse_vrpn_options, "vrpn://192.168.1.3");
@@ -46,15 +37,16 @@ TEST(SourceUrlVrpn, DefaultsTrackersAndOptions) {
 }
 
 TEST(SourceUrlVrpn, Refusals) {
-  EXPECT_EQ(error("vrpn://h?lost=5"),
+  EXPECT_EQ(check_error("vrpn://h?lost=5"),
             "unknown option \"lost\" for vrpn://; did you mean \"lost_ms\"? (options: frozen_ms, "
             "lost_ms, timeout_ms)");
-  EXPECT_EQ(error("vrpn://a,,b@h"), "vrpn:// tracker names must be 1 to 99 characters, got \"\"");
-  EXPECT_EQ(error("vrpn://h/x"), "vrpn:// takes no path, got \"h/x\"");
-  EXPECT_EQ(error("vrpn://h:0"), "port must be 1..65535, got \"0\"");
-  EXPECT_NE(error("vrpn://h?lost_ms=5"), "");
-  EXPECT_NE(error("vrpn://h?timeout_ms=x"), "");
-  EXPECT_EQ(error("vrpn://T@h"), "");
+  EXPECT_EQ(check_error("vrpn://a,,b@h"),
+            "vrpn:// tracker names must be 1 to 99 characters, got \"\"");
+  EXPECT_EQ(check_error("vrpn://h/x"), "vrpn:// takes no path, got \"h/x\"");
+  EXPECT_EQ(check_error("vrpn://h:0"), "port must be 1..65535, got \"0\"");
+  EXPECT_NE(check_error("vrpn://h?lost_ms=5"), "");
+  EXPECT_NE(check_error("vrpn://h?timeout_ms=x"), "");
+  EXPECT_EQ(check_error("vrpn://T@h"), "");
 }
 
 TEST(SourceUrlViconUdp, DefaultsAndOptions) {
@@ -79,14 +71,14 @@ TEST(SourceUrlViconUdp, DefaultsAndOptions) {
 }
 
 TEST(SourceUrlViconUdp, Refusals) {
-  EXPECT_EQ(error("vicon-udp://?rotation=xzy"), "rotation must be xyz or zyx, got \"xzy\"");
-  EXPECT_EQ(error("vicon-udp://?from=tracker-pc"),
+  EXPECT_EQ(check_error("vicon-udp://?rotation=xzy"), "rotation must be xyz or zyx, got \"xzy\"");
+  EXPECT_EQ(check_error("vicon-udp://?from=tracker-pc"),
             "from must be the Tracker's IP address, got \"tracker-pc\"");
-  EXPECT_EQ(error("vicon-udp://lab-pc:51001"),
+  EXPECT_EQ(check_error("vicon-udp://lab-pc:51001"),
             "vicon-udp:// binds to a local IP address, got \"lab-pc\"");
-  EXPECT_EQ(error("vicon-udp://:51001/x"), "vicon-udp:// takes no path, got \":51001/x\"");
-  EXPECT_NE(error("vicon-udp://?rotaton=xyz"), "");
-  EXPECT_NE(error("vicon-udp://?arena_m=0"), "");
+  EXPECT_EQ(check_error("vicon-udp://:51001/x"), "vicon-udp:// takes no path, got \":51001/x\"");
+  EXPECT_NE(check_error("vicon-udp://?rotaton=xyz"), "");
+  EXPECT_NE(check_error("vicon-udp://?arena_m=0"), "");
 }
 
 }  // namespace

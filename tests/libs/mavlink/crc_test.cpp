@@ -6,12 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 namespace mocaplink::mavlink {
 namespace {
 
-std::span<const std::uint8_t> bytes_of(std::string_view s) {
-  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
+using test::bytes_of;
 
 // CRC-16/MCRF4XX check value from the CRC catalogue (Greg Cook's "reveng" catalogue):
 // crc("123456789") = 0x6F91.

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.hpp"
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,9 +17,7 @@
 namespace mocaplink::mavlink {
 namespace {
 
-std::span<const std::uint8_t> bytes_of(std::string_view s) {
-  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
+using test::bytes_of;
 
 std::string sha256_hex(std::string_view message) {
   Sha256 h;
