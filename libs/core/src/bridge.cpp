@@ -242,8 +242,17 @@ void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out)
           static_cast<std::uint8_t>(body.reset_base + body.tracker.estimate().reset_counter + 1);
       body.tracker = Tracker(config_.tracking, AxisMapping(config_.world, body.axes));
     }
-    const auto sample = std::find_if(frame.bodies.begin(), frame.bodies.end(),
-                                     [&](const BodySample& s) { return s.name == body.name; });
+    auto sample = frame.bodies.end();
+    if (body.frame_index_hint < frame.bodies.size() &&
+        frame.bodies[body.frame_index_hint].name == body.name) {
+      sample = frame.bodies.begin() + static_cast<std::ptrdiff_t>(body.frame_index_hint);
+    } else {
+      sample = std::find_if(frame.bodies.begin(), frame.bodies.end(),
+                            [&](const BodySample& s) { return s.name == body.name; });
+      if (sample != frame.bodies.end()) {
+        body.frame_index_hint = static_cast<std::size_t>(sample - frame.bodies.begin());
+      }
+    }
     if (sample != frame.bodies.end()) {
       (void)body.tracker.on_sample(frame.capture_time, *sample);
     } else {
@@ -278,23 +287,33 @@ BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
 }
 
 void Bridge::on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
+  track_frame(frame, received, out);
+  emit_frame(0, vehicles_.size(), out.messages);
+}
+
+void Bridge::track_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
   out.messages.clear();
   out.events.clear();
   station_.on_frame(frame, received);
   const HostTime capture =
       capture_mapper_.on_frame(frame.capture_time, received, frame.source_latency);
   track(frame, capture, out);
-  SendContext context;
-  context.now = received;
-  context.capture = capture;
-  context.start = start_;
-  context.origin = geodetic_ ? &*geodetic_ : nullptr;
-  context.gps = config_.gps;
-  context.gps_time = gps_time(capture);
-  context.signing_now_10us = signing_now_10us(received);
-  for (auto& v : vehicles_) {
+  frame_context_.now = received;
+  frame_context_.capture = capture;
+  frame_context_.start = start_;
+  frame_context_.origin = geodetic_ ? &*geodetic_ : nullptr;
+  frame_context_.gps = config_.gps;
+  frame_context_.gps_time = gps_time(capture);
+  frame_context_.signing_now_10us = signing_now_10us(received);
+}
+
+void Bridge::emit_frame(std::size_t first, std::size_t end,
+                        std::vector<OutgoingMessage>& messages) {
+  end = std::min(end, vehicles_.size());
+  for (std::size_t slot = first; slot < end; ++slot) {
+    auto& v = vehicles_[slot];
     if (!v || !v->spec.enabled) continue;
-    v->sender.on_estimate(bodies_[v->body].published, context, out.messages);
+    v->sender.on_estimate(bodies_[v->body].published, frame_context_, messages);
   }
 }
 

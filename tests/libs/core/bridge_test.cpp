@@ -6,10 +6,13 @@
 
 #include "mocaplink/mavlink/frame.hpp"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -516,6 +519,62 @@ TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {
       mapper.on_frame(SourceTime{milliseconds(5)}, HostTime{seconds(160)}, std::nullopt);
   EXPECT_EQ(mapper.reseeds(), 1U);
   EXPECT_EQ(t, HostTime{seconds(160)});
+}
+
+// track_frame + emit_frame over slot ranges, called in any order (as threads would), is on_frame:
+// the same bytes to the same vehicles in the same order per vehicle, and the same events. Six
+// vehicles on two bodies, every profile kind, signed and decimated ones, an empty slot, a body
+// lost and found again.
+TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
+  BridgeConfig c = two_vehicles();
+  c.vehicles.push_back(vehicle("q2", "Quad", Profile::classic, 3));
+  c.vehicles.push_back(vehicle("r2", "Rover", Profile::px4_gps, 4));
+  c.vehicles.push_back(vehicle("q3", "Quad", Profile::ardupilot, 5));
+  c.vehicles.push_back(vehicle("gone", "Quad", Profile::px4, 6));
+  c.vehicles.push_back(vehicle("r3", "Rover", Profile::px4, 7));
+  c.vehicles[2].signing_key = std::array<std::uint8_t, 32>{1};
+  c.vehicles[4].rate_hz = 25.0;
+  Bridge whole = make_bridge(c);
+  Bridge steps = make_bridge(c);
+  for (Bridge* b : {&whole, &steps}) {
+    b->set_wall_clock(HostTime{seconds(100)}, 1'790'000'000'000'000);
+    ASSERT_TRUE(b->remove_vehicle(5));  // "gone": an empty slot inside a range
+  }
+  using Bytes = std::vector<std::uint8_t>;
+  std::map<std::size_t, std::vector<Bytes>> sent_whole;
+  std::map<std::size_t, std::vector<Bytes>> sent_steps;
+  std::size_t events = 0;
+  BridgeOutput out;
+  std::vector<OutgoingMessage> part;
+  for (std::uint64_t n = 1; n <= 300; ++n) {
+    const MocapFrame f = frame_at(n, n < 100 || n > 200, true);  // Quad lost for a second
+    whole.on_frame(f, received_at(n), out);
+    for (const auto& m : out.messages) {
+      sent_whole[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+    }
+    const std::vector<BridgeEvent> whole_events = out.events;
+    steps.track_frame(f, received_at(n), out);
+    ASSERT_EQ(out.messages.size(), 0u);
+    ASSERT_EQ(out.events.size(), whole_events.size());
+    for (std::size_t e = 0; e < whole_events.size(); ++e) {
+      EXPECT_EQ(out.events[e].text, whole_events[e].text);
+    }
+    events += whole_events.size();
+    // Ranges [4, 99), [2, 4), [0, 2), the way three threads might finish.
+    for (const auto& [first, end] : {std::pair<std::size_t, std::size_t>{4, 99}, {2, 4}, {0, 2}}) {
+      part.clear();
+      steps.emit_frame(first, end, part);
+      for (const auto& m : part) {
+        ASSERT_GE(m.vehicle, first);
+        ASSERT_LT(m.vehicle, end);
+        sent_steps[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+      }
+    }
+  }
+  EXPECT_GE(events, 2u);             // the Quad was lost and found again
+  EXPECT_EQ(sent_whole.size(), 6u);  // every live vehicle sent something
+  EXPECT_EQ(sent_whole.count(5), 0u);
+  EXPECT_EQ(sent_steps, sent_whole);
 }
 
 }  // namespace

@@ -27,7 +27,8 @@
 // never move; remove_vehicle() empties one and the next add_vehicle() reuses the lowest empty
 // slot, so an adapter can keep per-vehicle state (links, files) in a vector indexed the same way.
 // A body's Tracker lives while some vehicle follows it; removing the last such vehicle drops it.
-// Thread-safety: not thread-safe; snapshot() returns an independent copy.
+// Thread-safety: not thread-safe (except emit_frame for disjoint slot ranges, below); snapshot()
+// returns an independent copy.
 #pragma once
 
 #include <array>
@@ -173,6 +174,17 @@ class Bridge {
   /// The same into `out` (cleared first): a caller that keeps `out` from frame to frame reuses
   /// its capacity, so the per-frame path does not allocate once it has grown.
   void on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out);
+  /// on_frame in two steps, for a caller that spreads the vehicles over threads (docs/daemon.md
+  /// "Threads"): track_frame does everything but the vehicles (Station, capture time, trackers;
+  /// `out` cleared, body events into it), then emit_frame lets the vehicles in slots
+  /// [first, end) (empty slots skipped, `end` clamped to slot_count()) react to that frame,
+  /// appending their messages to `messages` in slot order. track_frame followed by
+  /// emit_frame(0, slot_count()) is exactly on_frame. Calls of emit_frame for disjoint slot ranges
+  /// touch disjoint state (each vehicle's Sender; the rest is only read), so they may run on
+  /// different threads at once, provided nothing else of the Bridge runs meanwhile; calling
+  /// emit_frame twice for a slot in one frame, or before any track_frame, is a programming error.
+  void track_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out);
+  void emit_frame(std::size_t first, std::size_t end, std::vector<OutgoingMessage>& messages);
   /// A decoded message from vehicle `vehicle`'s link (its slot; an empty or out-of-range slot is
   /// ignored).
   BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
@@ -233,6 +245,9 @@ class Bridge {
     /// starts at 0 again) and must still look like a reset to the vehicles (§6).
     std::uint8_t reset_base = 0;
     BodyEstimate published;  ///< tracker.estimate() with reset_base applied: what is sent
+    /// Where this body was in the last frame's body list: sources list bodies in a stable order,
+    /// so looking there first finds it without comparing every name (track()).
+    std::size_t frame_index_hint = 0;
   };
   struct Vehicle {
     VehicleSpec spec;
@@ -264,6 +279,7 @@ class Bridge {
   std::vector<std::optional<Vehicle>> vehicles_;  // by slot; std::nullopt: removed
   std::optional<Duration> unix_minus_host_;
   std::optional<SourceTime> last_capture_;
+  SendContext frame_context_;  // of the frame track_frame() saw last (emit_frame reads it)
   std::uint64_t source_restarts_ = 0;
 };
 
