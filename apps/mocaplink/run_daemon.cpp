@@ -79,6 +79,7 @@ class Daemon {
         queue_(kQueueCapacity),
         store_(settings.state_dir),
         send_pool_(max_send_threads_logged()),
+        part_messages_(send_pool_.max_parts()),
         tick_timer_(loop_),
         flush_timer_(loop_),
         signing_timer_(loop_),
@@ -106,7 +107,12 @@ class Daemon {
   void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
+  void on_frame(const core::MocapFrame& frame, core::HostTime received);
   void dispatch(const core::BridgeOutput& out);
+  /// Sends messages[first, end) (one vehicle's run) to that vehicle's link, in batches.
+  void send_run(std::span<const core::OutgoingMessage> messages);
+  /// After messages went out: the recording and each signed vehicle's signing clock.
+  void account(std::span<const core::OutgoingMessage> messages);
   void on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame, core::HostTime t);
   void save_signing();
   void stop(const std::string& reason);
@@ -123,14 +129,9 @@ class Daemon {
   io::SigningStore store_;
   std::vector<VehicleLink> vehicles_;  // by vehicle slot, as in the Bridge; empty: link == nullptr
   std::vector<Retired> retired_;       // links of removed vehicles, closed, not yet destroyed
-  /// One vehicle's messages in a BridgeOutput: messages[first, end).
-  struct VehicleRun {
-    std::size_t vehicle;
-    std::size_t first;
-    std::size_t end;
-  };
-  std::vector<VehicleRun> runs_;  // dispatch()'s, kept for its capacity
-  io::ForkJoin send_pool_;        // the threads that share a frame's sends (io/send_threads.hpp)
+  io::ForkJoin send_pool_;  // the threads that share a frame's vehicles (io/send_threads.hpp)
+  /// Each send thread's messages of the current frame (on_frame), kept for their capacity.
+  std::vector<std::vector<core::OutgoingMessage>> part_messages_;
   std::size_t most_send_threads_ = 1;  // the most send_pool_ threads used at once so far (logged)
   asio::steady_timer tick_timer_;
   asio::steady_timer flush_timer_;
@@ -370,72 +371,94 @@ void Daemon::drain() {
   queue_.drain(batch_);
   for (auto& item : batch_) {
     if (recorder_) recorder_->on_frame(item.frame);
-    bridge_.on_frame(item.frame, item.received, frame_output_);  // reused: no allocation
-    dispatch(frame_output_);
+    on_frame(item.frame, item.received);
     bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
 }
 
-void Daemon::dispatch(const core::BridgeOutput& out) {
-  // A vehicle's messages are consecutive: each run goes to its link in batches (one sendmmsg per
-  // batch for UDP), in order.
-  const auto& messages = out.messages;
-  runs_.clear();
+/// Calls f(run) for each run of consecutive messages to one vehicle (the core emits a vehicle's
+/// messages of one step together, so each vehicle has one run per step).
+template <typename F>
+void for_each_run(std::span<const core::OutgoingMessage> messages, F f) {
   for (std::size_t first = 0, end = 0; first < messages.size(); first = end) {
     end = first + 1;
     while (end < messages.size() && messages[end].vehicle == messages[first].vehicle) ++end;
-    const std::size_t vehicle = messages[first].vehicle;
-    if (vehicle < vehicles_.size() && vehicles_[vehicle].link) {
-      runs_.push_back(VehicleRun{vehicle, first, end});
-    }
+    f(messages.subspan(first, end - first));
   }
-  const auto send_run = [&](const VehicleRun& run) {
-    std::array<std::span<const std::uint8_t>, io::UdpLink::kMaxBatch> batch;
-    for (std::size_t k = run.first; k < run.end;) {
-      std::size_t n = 0;
-      while (k < run.end && n < batch.size()) batch[n++] = messages[k++].frame.bytes();
-      (void)vehicles_[run.vehicle].link->send_batch({batch.data(), n});
-    }
-  };
-  // One thread sends up to kVehiclesPerSendThread vehicles; more are spread over send_pool_'s
-  // threads, run i on thread i mod threads. Every run of a frame has left before the next frame is
-  // looked at (ForkJoin returns when all threads are done), so each vehicle still gets its
-  // messages in order. Links that cannot send in place (TCP, serial) stay on this thread (part 0).
-  const std::size_t threads = io::send_threads_for(runs_.size(), send_pool_.max_parts());
+}
+
+void Daemon::on_frame(const core::MocapFrame& frame, core::HostTime received) {
+  bridge_.track_frame(frame, received, frame_output_);  // trackers; body events, no messages
+  // The vehicles in chunks of kFrameChunk slots, each chunk's messages built and sent at once
+  // (the first vehicles' poses leave before the last ones' are built). One thread takes
+  // kVehiclesPerSendThread vehicles; more are spread over send_pool_'s threads, chunk i on thread
+  // i mod threads (Bridge::emit_frame for disjoint slots, and each vehicle's UDP link, are used
+  // by one thread at a time). ForkJoin returns when every thread is done, before the next frame,
+  // so each vehicle still gets its poses in capture order. Links that cannot send in place (TCP,
+  // serial) are sent by this thread: at once in part 0, which runs here, after the join for the
+  // others.
+  constexpr std::size_t kFrameChunk = io::UdpLink::kMaxBatch;
+  const std::size_t slots = bridge_.slot_count();
+  const std::size_t threads = io::send_threads_for(bridge_.vehicle_count(), send_pool_.max_parts());
   if (threads > most_send_threads_) {
     most_send_threads_ = threads;
-    spdlog::info("sending from {} threads ({} vehicles at once; one thread per {}, at most {})",
-                 threads, runs_.size(), io::kVehiclesPerSendThread, send_pool_.max_parts());
+    spdlog::info("sending from {} threads ({} vehicles; one thread per {}, at most {})", threads,
+                 bridge_.vehicle_count(), io::kVehiclesPerSendThread, send_pool_.max_parts());
   }
-  if (threads == 1) {
-    for (const auto& run : runs_) send_run(run);
-  } else {
-    send_pool_.run(threads, [&](std::size_t part) {
-      for (std::size_t i = 0; i < runs_.size(); ++i) {
-        const VehicleRun& run = runs_[i];
-        const bool in_place = vehicles_[run.vehicle].link->sends_in_place();
-        if (in_place ? i % threads == part : part == 0) send_run(run);
-      }
-    });
+  send_pool_.run(threads, [&](std::size_t part) {
+    auto& messages = part_messages_[part];
+    messages.clear();
+    for (std::size_t first = part * kFrameChunk; first < slots; first += threads * kFrameChunk) {
+      const std::size_t begin = messages.size();
+      bridge_.emit_frame(first, first + kFrameChunk, messages);
+      for_each_run(std::span(messages).subspan(begin), [&](auto run) {
+        const auto& link = vehicles_[run.front().vehicle].link;
+        if (part == 0 || link->sends_in_place()) send_run(run);
+      });
+    }
+  });
+  for (std::size_t part = 0; part < threads; ++part) {
+    if (part > 0) {
+      for_each_run(part_messages_[part], [&](auto run) {
+        if (!vehicles_[run.front().vehicle].link->sends_in_place()) send_run(run);
+      });
+    }
+    account(part_messages_[part]);
   }
-  // What was sent: the recording and the signing clock, on this thread.
+  for (const auto& e : frame_output_.events) summary_.on_event(e, io::host_now());
+}
+
+void Daemon::dispatch(const core::BridgeOutput& out) {
+  for_each_run(out.messages, [&](auto run) { send_run(run); });
+  account(out.messages);
+  for (const auto& e : out.events) summary_.on_event(e, io::host_now());
+}
+
+void Daemon::send_run(std::span<const core::OutgoingMessage> run) {
+  const std::size_t vehicle = run.front().vehicle;
+  if (vehicle >= vehicles_.size() || !vehicles_[vehicle].link) return;
+  std::array<std::span<const std::uint8_t>, io::UdpLink::kMaxBatch> batch;
+  for (std::size_t k = 0; k < run.size();) {
+    std::size_t n = 0;
+    while (k < run.size() && n < batch.size()) batch[n++] = run[k++].frame.bytes();
+    (void)vehicles_[vehicle].link->send_batch({batch.data(), n});
+  }
+}
+
+void Daemon::account(std::span<const core::OutgoingMessage> messages) {
   const bool recording = recorder_ != nullptr;
   const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
-  for (const auto& run : runs_) {
-    auto& v = vehicles_[run.vehicle];
-    if (!recording && !v.signing) continue;
-    for (std::size_t k = run.first; k < run.end; ++k) {
-      const auto bytes = messages[k].frame.bytes();
-      if (recording) recorder_->on_mavlink(run.vehicle, unix_us, bytes);
-      if (v.signing) {
-        // The signature block of the frame we encoded (mavlink-wire.md §7.1), read by the codec.
-        const auto view = mavlink::parse_frame(bytes);
-        if (view && view->signature) v.last_signing_10us = view->signature->timestamp_10us;
-      }
+  for (const auto& m : messages) {
+    if (m.vehicle >= vehicles_.size() || !vehicles_[m.vehicle].link) continue;
+    auto& v = vehicles_[m.vehicle];
+    if (recording) recorder_->on_mavlink(m.vehicle, unix_us, m.frame.bytes());
+    if (v.signing) {
+      // The signature block of the frame we encoded (mavlink-wire.md §7.1), read by the codec.
+      const auto view = mavlink::parse_frame(m.frame.bytes());
+      if (view && view->signature) v.last_signing_10us = view->signature->timestamp_10us;
     }
   }
-  for (const auto& e : out.events) summary_.on_event(e, io::host_now());
 }
 
 void Daemon::on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame,
