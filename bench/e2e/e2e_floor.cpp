@@ -3,18 +3,18 @@
 // `mocaplink run` (the [mocap] source of the e2e receivers' configuration, through the same source
 // registry and source thread), hands each frame to a loop thread the same way (the same bounded
 // queue, 256 frames, oldest dropped and counted, and one asio::post per batch), and there sends
-// one datagram per vehicle on its own connected UDP socket, from as many threads as the daemon
-// would use for that many vehicles (io::send_threads_for, io::ForkJoin; MOCAPLINK_SEND_THREADS
-// applies alike): a copy of one ODOMETRY frame encoded once at start (the same size as
-// mocaplink's), with only time_usec changed to the frame's host capture time
-// (core::CaptureTimeMapper, as the bridge stamps it). No tracking, no decimation, no encoding, no
-// logic.
-// Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT and
-// prints "floor: N frames, M queue overflows, ..." on stderr)
+// one datagram per vehicle on its own connected UDP socket, in the daemon's chunks of 16 vehicles
+// and from as many threads as the daemon would use for that many vehicles (io::send_threads_for,
+// io::ForkJoin; MOCAPLINK_SEND_THREADS applies alike): a copy of one ODOMETRY frame encoded once at
+// start (the same size as mocaplink's), with only time_usec changed to the frame's host capture
+// time (core::CaptureTimeMapper, as the bridge stamps it). No tracking, no decimation, no encoding,
+// no logic. Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT
+// and prints "floor: N frames, M queue overflows, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <csignal>
@@ -137,8 +137,12 @@ int main(int argc, char** argv) {
         for (std::size_t b = 0; b < 8; ++b) {
           bytes[10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
         }
-        for (std::size_t v = part; v < sockets.size(); v += threads) {
-          (void)::send(sockets[v], bytes.data(), size, 0);
+        // The daemon's chunks: 16 vehicles, chunk i on thread i mod threads.
+        constexpr std::size_t kChunk = 16;
+        for (std::size_t first = part * kChunk; first < sockets.size(); first += threads * kChunk) {
+          for (std::size_t v = first; v < std::min(first + kChunk, sockets.size()); ++v) {
+            (void)::send(sockets[v], bytes.data(), size, 0);
+          }
         }
       });
     }

@@ -36,7 +36,7 @@ prio=()
 measure() {
   local n=$1
   shift
-  "${prio[@]}" "$receivers" --vehicles "$n" --config "$work/c.toml" > "$work/recv.out" &
+  "${prio[@]}" "$receivers" --vehicles "$n" --config "$work/c.toml" --poll-ms "${POLL_MS:-2}" > "$work/recv.out" &
   local rpid=$!
   while ! grep -q ready "$work/recv.out" 2>/dev/null; do sleep 0.1; done
   MOCAPLINK_STATE_DIR="$work/state" MOCAPLINK_SUMMARY_S=3600 /usr/bin/time -f '%U %S %e %M' \
