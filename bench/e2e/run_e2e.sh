@@ -8,6 +8,8 @@
 # Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN FLOOR_BIN [SECONDS] [N...]
 # NICE=-10 runs every process at that priority (a shared, busy machine; needs root).
 # LOAD=compile keeps one compiler busy for the whole run (the other core loaded by a build).
+# REPEAT=K measures floor and mocaplink K times per N, back to back, and prints the medians (the
+# ratios: the median of each repetition's ratio). POLL_MS sets the receivers' polling (default 2).
 set -euo pipefail
 bin=$1
 receivers=$2
@@ -63,16 +65,26 @@ measure() {
 echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | CPU floor / mocaplink | peak RSS |"
 echo "|---:|---:|---:|---|---|---|---:|---:|"
 for n in "${counts[@]}"; do
-  read -r ff fr fp50 fp99 fcpu _ < <(measure "$n" "$floor")
-  read -r mf mr mp50 mp99 cpu rss < <(measure "$n" "$bin" run)
+  rows=()
+  for ((rep = 0; rep < ${REPEAT:-1}; rep++)); do
+    read -r ff fr fp50 fp99 fcpu _ < <(measure "$n" "$floor")
+    read -r mf mr mp50 mp99 cpu rss < <(measure "$n" "$bin" run)
+    rows+=("$ff $fr $fp50 $fp99 $fcpu $mf $mr $mp50 $mp99 $cpu $rss")
+  done
+  # One row per N: each column the median over the repetitions, the ratios the median of each
+  # repetition's own ratio (floor and mocaplink measured back to back).
   node -e '
-    const [n, ff, fr, fp50, fp99, fcpu, mf, mr, mp50, mp99, cpu, rss] =
-      process.argv.slice(1).map(Number);
-    const lost = (frames, got) => `${(100 * (1 - got / (n * frames))).toFixed(3)} %`;
+    const n = Number(process.argv[1]);
+    const reps = process.argv.slice(2).map((r) => r.split(" ").map(Number));
+    const median = (xs) => { const s = [...xs].sort((a, b) => a - b); const k = s.length >> 1;
+      return s.length % 2 ? s[k] : (s[k - 1] + s[k]) / 2; };
+    const col = (i) => median(reps.map((r) => r[i]));
+    const lost = (r, f, g) => 100 * (1 - r[g] / (n * r[f]));
     const ms = (us) => (us / 1000).toFixed(2);
-    const ratio = (a, b) => (b > 0 ? (a / b).toFixed(2) : "–");
-    console.log(`| ${n} | ${mf} | ${lost(ff, fr)} / ${lost(mf, mr)} | ${ms(fp50)} / ${ms(fp99)} ms | ` +
-      `${ms(mp50)} / ${ms(mp99)} ms | ${ratio(mp50, fp50)} / ${ratio(mp99, fp99)} | ` +
-      `${fcpu} / ${cpu} % | ${rss} MiB |`);
-  ' "$n" "$ff" "$fr" "$fp50" "$fp99" "$fcpu" "$mf" "$mr" "$mp50" "$mp99" "$cpu" "$rss"
+    const ratio = (i, j) => median(reps.map((r) => (r[j] > 0 ? r[i] / r[j] : NaN))).toFixed(2);
+    console.log(`| ${n} | ${col(5)} | ${median(reps.map((r) => lost(r, 0, 1))).toFixed(3)} % / ` +
+      `${median(reps.map((r) => lost(r, 5, 6))).toFixed(3)} % | ${ms(col(2))} / ${ms(col(3))} ms | ` +
+      `${ms(col(7))} / ${ms(col(8))} ms | ${ratio(7, 2)} / ${ratio(8, 3)} | ` +
+      `${col(4).toFixed(1)} / ${col(9).toFixed(1)} % | ${col(10).toFixed(1)} MiB |`);
+  ' "$n" "${rows[@]}"
 done
