@@ -6,6 +6,7 @@ function(mocaplink_fuzz name source)
   add_executable(${name}_replay ${source} ${PROJECT_SOURCE_DIR}/fuzz/replay_main.cpp)
   target_link_libraries(${name}_replay PRIVATE ${ARGN})
   mocaplink_warnings(${name}_replay)
+  mocaplink_test_flags(${name}_replay)
   add_test(NAME fuzz_replay.${name}
            COMMAND ${name}_replay ${PROJECT_SOURCE_DIR}/fuzz/corpus/${name})
   set_tests_properties(fuzz_replay.${name} PROPERTIES LABELS fuzz-replay)

@@ -92,20 +92,20 @@ TEST(BridgeAllocation, OnFrameAllocatesNothingOnceWarm) {
   // 30 s of frames, built before counting (a source's frame is its own allocation).
   std::vector<MocapFrame> frames;
   for (std::uint64_t n = 0; n < 30 * 240; ++n) frames.push_back(make_frame(n));
-  const auto received = [](std::uint64_t n) {
+  const auto received = [](std::size_t n) {
     return host_time_from_ns(static_cast<std::int64_t>(static_cast<double>(n) / kRateHz * 1e9) +
                              2'000'000);
   };
   BridgeOutput out;
   // Warm-up: 4 s, two occlusion cycles (every body seen, lost and back at least once).
-  const std::uint64_t warm = 4 * 240;
-  for (std::uint64_t n = 0; n < warm; ++n) bridge.on_frame(frames[n], received(n), out);
+  const std::size_t warm = 4 * 240;
+  for (std::size_t n = 0; n < warm; ++n) bridge.on_frame(frames[n], received(n), out);
 
   std::size_t messages = 0;
   std::size_t events = 0;
   std::size_t quiet_frame_allocations = 0;  // in frames that reported no event
   std::size_t event_allocations = 0;        // in frames that did
-  for (std::uint64_t n = warm; n < frames.size(); ++n) {
+  for (std::size_t n = warm; n < frames.size(); ++n) {
     const std::size_t before = g_allocations.load();
     bridge.on_frame(frames[n], received(n), out);
     const std::size_t allocations = g_allocations.load() - before;
