@@ -114,6 +114,10 @@ class Daemon {
   /// After messages went out: the recording and each signed vehicle's signing clock.
   void account(std::span<const core::OutgoingMessage> messages);
   void on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& frame, core::HostTime t);
+  /// The link of the vehicle in `slot`, or nullptr for an empty or unknown slot.
+  io::Link* link_of(std::size_t slot) const {
+    return slot < vehicles_.size() ? vehicles_[slot].link.get() : nullptr;
+  }
   void save_signing();
   void stop(const std::string& reason);
   template <typename F>
@@ -199,7 +203,7 @@ void Daemon::start_link(std::size_t slot) {
   link->start(
       [this, slot, link](const mavlink::FrameView& frame, core::HostTime t) {
         // The slot may hold another vehicle's link by now (removed, then added again).
-        if (slot < vehicles_.size() && vehicles_[slot].link.get() == link) {
+        if (link_of(slot) == link) {
           on_vehicle_frame(slot, frame, t);
         }
       },
@@ -258,7 +262,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
 std::optional<web::ApiError> Daemon::remove_vehicle(const std::string& name) {
   if (stopping_) return web::ApiError{503, "the daemon is stopping", ""};
   const auto slot = bridge_.find_vehicle(name);
-  if (!slot || *slot >= vehicles_.size() || !vehicles_[*slot].link) {
+  if (!slot || link_of(*slot) == nullptr) {
     return web::ApiError{404, "no vehicle named \"" + name + "\"", ""};
   }
   (void)bridge_.remove_vehicle(*slot);
@@ -413,15 +417,16 @@ void Daemon::on_frame(const core::MocapFrame& frame, core::HostTime received) {
       const std::size_t begin = messages.size();
       bridge_.emit_frame(first, first + kFrameChunk, messages);
       for_each_run(std::span(messages).subspan(begin), [&](auto run) {
-        const auto& link = vehicles_[run.front().vehicle].link;
-        if (part == 0 || link->sends_in_place()) send_run(run);
+        const io::Link* link = link_of(run.front().vehicle);
+        if (link != nullptr && (part == 0 || link->sends_in_place())) send_run(run);
       });
     }
   });
   for (std::size_t part = 0; part < threads; ++part) {
     if (part > 0) {
       for_each_run(part_messages_[part], [&](auto run) {
-        if (!vehicles_[run.front().vehicle].link->sends_in_place()) send_run(run);
+        const io::Link* link = link_of(run.front().vehicle);
+        if (link != nullptr && !link->sends_in_place()) send_run(run);
       });
     }
     account(part_messages_[part]);
@@ -436,13 +441,13 @@ void Daemon::dispatch(const core::BridgeOutput& out) {
 }
 
 void Daemon::send_run(std::span<const core::OutgoingMessage> run) {
-  const std::size_t vehicle = run.front().vehicle;
-  if (vehicle >= vehicles_.size() || !vehicles_[vehicle].link) return;
+  io::Link* link = link_of(run.front().vehicle);
+  if (link == nullptr) return;
   std::array<std::span<const std::uint8_t>, io::UdpLink::kMaxBatch> batch;
   for (std::size_t k = 0; k < run.size();) {
     std::size_t n = 0;
     while (k < run.size() && n < batch.size()) batch[n++] = run[k++].frame.bytes();
-    (void)vehicles_[vehicle].link->send_batch({batch.data(), n});
+    (void)link->send_batch({batch.data(), n});
   }
 }
 
@@ -450,7 +455,7 @@ void Daemon::account(std::span<const core::OutgoingMessage> messages) {
   const bool recording = recorder_ != nullptr;
   const std::int64_t unix_us = recording ? io::unix_now_us() : 0;
   for (const auto& m : messages) {
-    if (m.vehicle >= vehicles_.size() || !vehicles_[m.vehicle].link) continue;
+    if (link_of(m.vehicle) == nullptr) continue;
     auto& v = vehicles_[m.vehicle];
     if (recording) recorder_->on_mavlink(m.vehicle, unix_us, m.frame.bytes());
     if (v.signing) {
