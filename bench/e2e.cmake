@@ -9,3 +9,7 @@ add_executable(e2e_floor ${CMAKE_CURRENT_SOURCE_DIR}/e2e/e2e_floor.cpp)
 target_link_libraries(e2e_floor PRIVATE mocaplink::core mocaplink::mavlink mocaplink::io
                       mocaplink::source_registry mocaplink_asio)
 mocaplink_warnings(e2e_floor)
+# The CPU cost of one loopback UDP send: plain, on a socket in epoll, as sendmmsg of one
+# (docs/performance.md "Where the time goes").
+add_executable(send_cost ${CMAKE_CURRENT_SOURCE_DIR}/e2e/send_cost.cpp)
+mocaplink_warnings(send_cost)
