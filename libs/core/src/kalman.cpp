@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/LU>
+
 #include "mocaplink/core/quaternion.hpp"
 
 namespace mocaplink::core {
@@ -10,29 +12,39 @@ namespace {
 
 using Matrix63d = Eigen::Matrix<double, 6, 3>;
 
-// Mahalanobis distance sqrt(nu^T S^-1 nu); S is symmetric positive definite (P + R, R > 0).
-double mahalanobis(const Eigen::Vector3d& nu, const Eigen::Matrix3d& s) {
-  return std::sqrt(nu.dot(s.ldlt().solve(nu)));
+// The innovation nu with covariance S (symmetric positive definite: P + R, R > 0): S^-1 once, in
+// closed form (Eigen's fixed-size 3x3 inverse, cofactors over the determinant), for both the gate
+// and the gain. An LDLT factorisation per use cost a third of the tracker's time on every frame
+// (docs/performance.md "Where the time goes") for no accuracy that a well-conditioned 3x3 needs.
+Innovation make_innovation(const Eigen::Vector3d& nu, const Eigen::Matrix3d& s) {
+  Innovation in;
+  in.nu = nu;
+  in.s = s;
+  in.s_inverse = s.inverse();
+  in.mahalanobis = std::sqrt(std::max(0.0, nu.dot(in.s_inverse * nu)));
+  return in;
 }
 
 // Kalman update for H = [I 0] (the measurement is the first three states), Joseph form so that P
-// stays symmetric positive semi-definite despite rounding. Returns the state correction.
+// stays symmetric positive semi-definite despite rounding: P' = G P G^T + r K K^T, G = I - K H.
+// H's zeros spelled out: G P = P - K (H P) = P - K P.topRows<3>, and (G P) G^T = G P - (G P H^T)
+// K^T, a third of the multiplications of the two 6x6 products. Returns the state correction.
 Vector6d joseph_update(Matrix6d& p, const Innovation& in, double r) {
-  const Matrix63d pht = p.leftCols<3>();
-  const Matrix63d k = in.s.ldlt().solve(pht.transpose()).transpose();  // P H^T S^-1
-  Matrix6d i_kh = Matrix6d::Identity();
-  i_kh.leftCols<3>() -= k;
-  p = i_kh * p * i_kh.transpose() + r * k * k.transpose();
+  const Matrix63d k = p.leftCols<3>() * in.s_inverse;  // P H^T S^-1
+  const Matrix6d gp = p - k * p.topRows<3>();
+  p = gp - gp.leftCols<3>() * k.transpose() + r * k * k.transpose();
   p = 0.5 * (p + p.transpose());
   return k * in.nu;
 }
 
-Innovation make_innovation(const Matrix6d& p, const Eigen::Vector3d& nu, double r) {
-  Innovation in;
-  in.nu = nu;
-  in.s = p.topLeftCorner<3, 3>() + r * Eigen::Matrix3d::Identity();
-  in.mahalanobis = mahalanobis(nu, in.s);
-  return in;
+// P <- F P F^T for one axis of the constant-acceleration model, F = [1 dt dt^2/2; 0 1 dt; 0 0 1]:
+// F's zeros and ones spelled out (rows, then columns), a third of the two 3x3 products.
+void propagate_constant_acceleration(Eigen::Matrix3d& p, double dt_s) {
+  const double half_dt2 = 0.5 * dt_s * dt_s;
+  p.row(0) += dt_s * p.row(1) + half_dt2 * p.row(2);  // F P: row 0 first, it reads rows 1 and 2
+  p.row(1) += dt_s * p.row(2);
+  p.col(0) += dt_s * p.col(1) + half_dt2 * p.col(2);  // (F P) F^T
+  p.col(1) += dt_s * p.col(2);
 }
 
 }  // namespace
@@ -74,8 +86,7 @@ void PositionFilter::predict(double dt_s) {
   // Markov switching probability over dt for a mean sojourn time tau: 1 - exp(-dt / tau).
   const double sw = -std::expm1(-dt_s / params_.mode_switch_time_s);
   const double pi[2][2] = {{1.0 - sw, sw}, {sw, 1.0 - sw}};  // pi[from][to]
-  Eigen::Matrix3d f;
-  f << 1.0, dt_s, 0.5 * dt_s * dt_s, 0.0, 1.0, dt_s, 0.0, 0.0, 1.0;
+  const double half_dt2 = 0.5 * dt_s * dt_s;
   const Eigen::Matrix3d q_unit = constant_acceleration_process_noise(dt_s, 1.0);
   const double psd[2] = {params_.quiet_jerk_psd, params_.manoeuvre_jerk_psd};
   for (Axis& axis : axis_) {
@@ -94,19 +105,17 @@ void PositionFilter::predict(double dt_s) {
                    w1 * (axis.model[1].p + d1 * d1.transpose());
     }
     for (int j = 0; j < 2; ++j) {
-      axis.model[j].x = f * mixed[j].x;
-      axis.model[j].p = f * mixed[j].p * f.transpose() + psd[j] * q_unit;
+      const Eigen::Vector3d& x = mixed[j].x;
+      axis.model[j].x = {x[0] + dt_s * x[1] + half_dt2 * x[2], x[1] + dt_s * x[2], x[2]};  // F x
+      propagate_constant_acceleration(mixed[j].p, dt_s);
+      axis.model[j].p = mixed[j].p + psd[j] * q_unit;
       axis.mu[j] = c[j];  // predicted model probability
     }
   }
 }
 
 Innovation PositionFilter::innovation(const Eigen::Vector3d& z_m, double r_m2) const {
-  Innovation in;
-  in.nu = z_m - p_m();
-  in.s = position_covariance() + r_m2 * Eigen::Matrix3d::Identity();
-  in.mahalanobis = mahalanobis(in.nu, in.s);
-  return in;
+  return make_innovation(z_m - p_m(), position_covariance() + r_m2 * Eigen::Matrix3d::Identity());
 }
 
 void PositionFilter::update(const Eigen::Vector3d& z_m, double r_m2) {
@@ -120,10 +129,11 @@ void PositionFilter::update(const Eigen::Vector3d& z_m, double r_m2) {
       const double s = m.p(0, 0) + r_m2;
       const double nu = z_m[i] - m.x[0];
       const Eigen::Vector3d k = m.p.col(0) / s;
-      Eigen::Matrix3d i_kh = Eigen::Matrix3d::Identity();
-      i_kh.col(0) -= k;
       m.x += k * nu;
-      m.p = i_kh * m.p * i_kh.transpose() + r_m2 * k * k.transpose();
+      // Joseph form, P' = G P G^T + r k k^T with G = I - k h, h = [1 0 0]: G P = P - k P.row(0),
+      // (G P) G^T = G P - (G P).col(0) k^T (as joseph_update above).
+      const Eigen::Matrix3d gp = m.p - k * m.p.row(0);
+      m.p = gp - gp.col(0) * k.transpose() + r_m2 * k * k.transpose();
       log_l[j] = -0.5 * (nu * nu / s + std::log(s));  // Gaussian likelihood, constant dropped
     }
     // Bayes on the model probabilities, in logs to avoid underflow for large innovations.
@@ -178,16 +188,25 @@ void AttitudeFilter::predict(double dt_s, double angular_accel_psd) {
   // Error dynamics of a right-multiplied error: dtheta' = -[w]x dtheta + dw. Over dt the attitude
   // error is carried into the new body axes by step^-1 (Sola, "Quaternion kinematics for the
   // error-state Kalman filter", 2017, eq. 268); the rate error integrates into it (first order).
-  Matrix6d f = Matrix6d::Identity();
-  f.topLeftCorner<3, 3>() = step.conjugate().toRotationMatrix();
-  f.topRightCorner<3, 3>().diagonal().setConstant(dt_s);
+  // F = [R dt I; 0 I] with R = step^-1, by blocks of P = [A B; B^T C]:
+  //   F P F^T = [R A R^T + dt (R B + B^T R^T) + dt^2 C,  R B + dt C;  (R B + dt C)^T,  C].
+  const Eigen::Matrix3d r = step.conjugate().toRotationMatrix();
   q_ = (q_ * step).normalized();
-  p_ = f * p_ * f.transpose() + constant_velocity_process_noise(dt_s, angular_accel_psd);
+  const Eigen::Matrix3d a = p_.topLeftCorner<3, 3>();
+  const Eigen::Matrix3d c = p_.bottomRightCorner<3, 3>();
+  const Eigen::Matrix3d rb = r * p_.topRightCorner<3, 3>();
+  const Eigen::Matrix3d b_new = rb + dt_s * c;
+  p_.topLeftCorner<3, 3>() =
+      r * a * r.transpose() + dt_s * (rb + rb.transpose()) + (dt_s * dt_s) * c;
+  p_.topRightCorner<3, 3>() = b_new;
+  p_.bottomLeftCorner<3, 3>() = b_new.transpose();
+  p_ += constant_velocity_process_noise(dt_s, angular_accel_psd);
 }
 
 Innovation AttitudeFilter::innovation(const Eigen::Quaterniond& q_meas, double r_rad2) const {
   // rotation_vector_from_quaternion takes the shorter of +-, so q_meas and -q_meas are the same.
-  return make_innovation(p_, rotation_vector_from_quaternion(q_.conjugate() * q_meas), r_rad2);
+  return make_innovation(rotation_vector_from_quaternion(q_.conjugate() * q_meas),
+                         p_.topLeftCorner<3, 3>() + r_rad2 * Eigen::Matrix3d::Identity());
 }
 
 void AttitudeFilter::update(const Innovation& innovation, double r_rad2) {

@@ -41,9 +41,10 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 /// A measurement's innovation against the prediction.
 struct Innovation {
-  Eigen::Vector3d nu = Eigen::Vector3d::Zero();     ///< measurement - prediction (m or rad)
-  Eigen::Matrix3d s = Eigen::Matrix3d::Identity();  ///< innovation covariance H P H^T + R
-  double mahalanobis = 0.0;                         ///< sqrt(nu^T S^-1 nu), dimensionless
+  Eigen::Vector3d nu = Eigen::Vector3d::Zero();             ///< measurement - prediction (m or rad)
+  Eigen::Matrix3d s = Eigen::Matrix3d::Identity();          ///< innovation covariance H P H^T + R
+  Eigen::Matrix3d s_inverse = Eigen::Matrix3d::Identity();  ///< S^-1 (the gain uses it)
+  double mahalanobis = 0.0;                                 ///< sqrt(nu^T S^-1 nu), dimensionless
 };
 
 /// Parameters of the two-model position filter.
