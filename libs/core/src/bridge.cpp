@@ -225,42 +225,39 @@ void Bridge::on_source_connection(bool connected) {
   station_.on_connection(connected);
 }
 
-void Bridge::track(const MocapFrame& frame, HostTime capture, BridgeOutput& out) {
-  // A step back of more than loss_timeout_ms cannot be a reordered datagram (those are a few
-  // frame periods late): the source's clock started again. Smaller steps are left to the
-  // Trackers, which refuse non-increasing times.
-  const auto max_step_back = std::chrono::duration_cast<Duration>(
-      std::chrono::duration<double, std::milli>(config_.tracking.loss_timeout_ms));
-  const bool restarted = last_capture_ && frame.capture_time + max_step_back < *last_capture_;
-  if (restarted) ++source_restarts_;
-  if (!last_capture_ || restarted || frame.capture_time > *last_capture_) {
-    last_capture_ = frame.capture_time;
+void Bridge::track_body(Body& body) {
+  if (body.tracked_frame == frame_number_) return;
+  body.tracked_frame = frame_number_;
+  const MocapFrame& frame = *frame_;
+  if (frame_restarted_) {
+    body.reset_base =
+        static_cast<std::uint8_t>(body.reset_base + body.tracker.estimate().reset_counter + 1);
+    body.tracker = Tracker(config_.tracking, AxisMapping(config_.world, body.axes));
   }
-  for (Body& body : bodies_) {
-    if (restarted) {
-      body.reset_base =
-          static_cast<std::uint8_t>(body.reset_base + body.tracker.estimate().reset_counter + 1);
-      body.tracker = Tracker(config_.tracking, AxisMapping(config_.world, body.axes));
-    }
-    auto sample = frame.bodies.end();
-    if (body.frame_index_hint < frame.bodies.size() &&
-        frame.bodies[body.frame_index_hint].name == body.name) {
-      sample = frame.bodies.begin() + static_cast<std::ptrdiff_t>(body.frame_index_hint);
-    } else {
-      sample = std::find_if(frame.bodies.begin(), frame.bodies.end(),
-                            [&](const BodySample& s) { return s.name == body.name; });
-      if (sample != frame.bodies.end()) {
-        body.frame_index_hint = static_cast<std::size_t>(sample - frame.bodies.begin());
-      }
-    }
+  auto sample = frame.bodies.end();
+  if (body.frame_index_hint < frame.bodies.size() &&
+      frame.bodies[body.frame_index_hint].name == body.name) {
+    sample = frame.bodies.begin() + static_cast<std::ptrdiff_t>(body.frame_index_hint);
+  } else {
+    sample = std::find_if(frame.bodies.begin(), frame.bodies.end(),
+                          [&](const BodySample& s) { return s.name == body.name; });
     if (sample != frame.bodies.end()) {
-      (void)body.tracker.on_sample(frame.capture_time, *sample);
-    } else {
-      (void)body.tracker.on_missing(frame.capture_time);
+      body.frame_index_hint = static_cast<std::size_t>(sample - frame.bodies.begin());
     }
-    body.published = body.tracker.estimate();
-    body.published.reset_counter =
-        static_cast<std::uint8_t>(body.published.reset_counter + body.reset_base);
+  }
+  if (sample != frame.bodies.end()) {
+    (void)body.tracker.on_sample(frame.capture_time, *sample);
+  } else {
+    (void)body.tracker.on_missing(frame.capture_time);
+  }
+  body.published = body.tracker.estimate();
+  body.published.reset_counter =
+      static_cast<std::uint8_t>(body.published.reset_counter + body.reset_base);
+}
+
+void Bridge::body_events(BridgeOutput& out) {
+  const HostTime capture = frame_context_.capture;
+  for (Body& body : bodies_) {
     const BodyEstimate& e = body.published;
     if (e.reset_counter != body.last_reset_counter) {
       body.last_reset_counter = e.reset_counter;
@@ -287,17 +284,28 @@ BridgeOutput Bridge::on_frame(const MocapFrame& frame, HostTime received) {
 }
 
 void Bridge::on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
-  track_frame(frame, received, out);
+  begin_frame(frame, received, out);
   emit_frame(0, vehicles_.size(), out.messages);
+  end_frame(out);
 }
 
-void Bridge::track_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
+void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
   out.messages.clear();
   out.events.clear();
-  station_.on_frame(frame, received);
   const HostTime capture =
       capture_mapper_.on_frame(frame.capture_time, received, frame.source_latency);
-  track(frame, capture, out);
+  // A step back of more than loss_timeout_ms cannot be a reordered datagram (those are a few
+  // frame periods late): the source's clock started again. Smaller steps are left to the
+  // Trackers, which refuse non-increasing times.
+  const auto max_step_back = std::chrono::duration_cast<Duration>(
+      std::chrono::duration<double, std::milli>(config_.tracking.loss_timeout_ms));
+  frame_restarted_ = last_capture_ && frame.capture_time + max_step_back < *last_capture_;
+  if (frame_restarted_) ++source_restarts_;
+  if (!last_capture_ || frame_restarted_ || frame.capture_time > *last_capture_) {
+    last_capture_ = frame.capture_time;
+  }
+  frame_ = &frame;
+  ++frame_number_;
   frame_context_.now = received;
   frame_context_.capture = capture;
   frame_context_.start = start_;
@@ -307,14 +315,27 @@ void Bridge::track_frame(const MocapFrame& frame, HostTime received, BridgeOutpu
   frame_context_.signing_now_10us = signing_now_10us(received);
 }
 
+void Bridge::track_bodies() {
+  for (Body& body : bodies_) track_body(body);
+}
+
 void Bridge::emit_frame(std::size_t first, std::size_t end,
                         std::vector<OutgoingMessage>& messages) {
   end = std::min(end, vehicles_.size());
   for (std::size_t slot = first; slot < end; ++slot) {
     auto& v = vehicles_[slot];
     if (!v || !v->spec.enabled) continue;
-    v->sender.on_estimate(bodies_[v->body].published, frame_context_, messages);
+    Body& body = bodies_[v->body];
+    track_body(body);
+    v->sender.on_estimate(body.published, frame_context_, messages);
   }
+}
+
+void Bridge::end_frame(BridgeOutput& out) {
+  track_bodies();
+  body_events(out);
+  station_.on_frame(*frame_, frame_context_.now);  // figures for the dashboard: after the sends
+  frame_ = nullptr;
 }
 
 void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,

@@ -521,10 +521,12 @@ TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {
   EXPECT_EQ(t, HostTime{seconds(160)});
 }
 
-// track_frame + emit_frame over slot ranges, called in any order (as threads would), is on_frame:
-// the same bytes to the same vehicles in the same order per vehicle, and the same events. Six
-// vehicles on two bodies, every profile kind, signed and decimated ones, an empty slot, a body
-// lost and found again.
+// begin_frame + emit_frame over slot ranges + end_frame is on_frame: the same bytes to the same
+// vehicles in the same order per vehicle, and the same events. Two ways of calling it: ranges in
+// any order from one thread, each range tracking its own vehicles' bodies on demand (the daemon
+// with one send thread), and track_bodies() first, then the ranges (as several threads would
+// run them). Six vehicles on two bodies, every profile kind, signed and decimated ones, an empty
+// slot, a disabled vehicle whose body only end_frame tracks, a body lost and found again.
 TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
   BridgeConfig c = two_vehicles();
   c.vehicles.push_back(vehicle("q2", "Quad", Profile::classic, 3));
@@ -532,49 +534,62 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
   c.vehicles.push_back(vehicle("q3", "Quad", Profile::ardupilot, 5));
   c.vehicles.push_back(vehicle("gone", "Quad", Profile::px4, 6));
   c.vehicles.push_back(vehicle("r3", "Rover", Profile::px4, 7));
+  c.vehicles.push_back(vehicle("off", "Spare", Profile::px4, 8));
   c.vehicles[2].signing_key = std::array<std::uint8_t, 32>{1};
   c.vehicles[4].rate_hz = 25.0;
-  Bridge whole = make_bridge(c);
-  Bridge steps = make_bridge(c);
-  for (Bridge* b : {&whole, &steps}) {
-    b->set_wall_clock(HostTime{seconds(100)}, 1'790'000'000'000'000);
-    ASSERT_TRUE(b->remove_vehicle(5));  // "gone": an empty slot inside a range
-  }
-  using Bytes = std::vector<std::uint8_t>;
-  std::map<std::size_t, std::vector<Bytes>> sent_whole;
-  std::map<std::size_t, std::vector<Bytes>> sent_steps;
-  std::size_t events = 0;
-  BridgeOutput out;
-  std::vector<OutgoingMessage> part;
-  for (std::uint64_t n = 1; n <= 300; ++n) {
-    const MocapFrame f = frame_at(n, n < 100 || n > 200, true);  // Quad lost for a second
-    whole.on_frame(f, received_at(n), out);
-    for (const auto& m : out.messages) {
-      sent_whole[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+  c.vehicles[7].enabled = false;
+  for (const bool track_first : {false, true}) {
+    SCOPED_TRACE(track_first ? "track_bodies first" : "bodies tracked on demand");
+    Bridge whole = make_bridge(c);
+    Bridge steps = make_bridge(c);
+    for (Bridge* b : {&whole, &steps}) {
+      b->set_wall_clock(HostTime{seconds(100)}, 1'790'000'000'000'000);
+      ASSERT_TRUE(b->remove_vehicle(5));  // "gone": an empty slot inside a range
     }
-    const std::vector<BridgeEvent> whole_events = out.events;
-    steps.track_frame(f, received_at(n), out);
-    ASSERT_EQ(out.messages.size(), 0u);
-    ASSERT_EQ(out.events.size(), whole_events.size());
-    for (std::size_t e = 0; e < whole_events.size(); ++e) {
-      EXPECT_EQ(out.events[e].text, whole_events[e].text);
-    }
-    events += whole_events.size();
-    // Ranges [4, 99), [2, 4), [0, 2), the way three threads might finish.
-    for (const auto& [first, end] : {std::pair<std::size_t, std::size_t>{4, 99}, {2, 4}, {0, 2}}) {
-      part.clear();
-      steps.emit_frame(first, end, part);
-      for (const auto& m : part) {
-        ASSERT_GE(m.vehicle, first);
-        ASSERT_LT(m.vehicle, end);
-        sent_steps[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+    using Bytes = std::vector<std::uint8_t>;
+    std::map<std::size_t, std::vector<Bytes>> sent_whole;
+    std::map<std::size_t, std::vector<Bytes>> sent_steps;
+    std::size_t events = 0;
+    BridgeOutput out;
+    std::vector<OutgoingMessage> part;
+    for (std::uint64_t n = 1; n <= 300; ++n) {
+      MocapFrame f = frame_at(n, n < 100 || n > 200, true);  // Quad lost for a second
+      BodySample spare = f.bodies.back();
+      spare.name = "Spare";
+      if (n % 100 < 50) f.bodies.push_back(spare);  // Spare comes and goes: events, no vehicle
+      whole.on_frame(f, received_at(n), out);
+      for (const auto& m : out.messages) {
+        sent_whole[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
       }
+      const std::vector<BridgeEvent> whole_events = out.events;
+      steps.begin_frame(f, received_at(n), out);
+      if (track_first) steps.track_bodies();
+      // Ranges [4, 99), [2, 4), [0, 2), the way three threads might finish.
+      for (const auto& [first, end] :
+           {std::pair<std::size_t, std::size_t>{4, 99}, {2, 4}, {0, 2}}) {
+        part.clear();
+        steps.emit_frame(first, end, part);
+        for (const auto& m : part) {
+          ASSERT_GE(m.vehicle, first);
+          ASSERT_LT(m.vehicle, end);
+          sent_steps[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+        }
+      }
+      steps.end_frame(out);
+      ASSERT_EQ(out.messages.size(), 0u);
+      ASSERT_EQ(out.events.size(), whole_events.size());
+      for (std::size_t e = 0; e < whole_events.size(); ++e) {
+        EXPECT_EQ(out.events[e].text, whole_events[e].text);
+        EXPECT_EQ(out.events[e].subject, whole_events[e].subject);
+      }
+      events += whole_events.size();
     }
+    EXPECT_GE(events, 6u);  // the Quad lost and found, Spare lost and found twice or more
+    EXPECT_EQ(sent_whole.size(), 6u);  // every live, enabled vehicle sent something
+    EXPECT_EQ(sent_whole.count(5), 0u);
+    EXPECT_EQ(sent_whole.count(7), 0u);
+    EXPECT_EQ(sent_steps, sent_whole);
   }
-  EXPECT_GE(events, 2u);             // the Quad was lost and found again
-  EXPECT_EQ(sent_whole.size(), 6u);  // every live vehicle sent something
-  EXPECT_EQ(sent_whole.count(5), 0u);
-  EXPECT_EQ(sent_steps, sent_whole);
 }
 
 }  // namespace

@@ -27,7 +27,7 @@
 // never move; remove_vehicle() empties one and the next add_vehicle() reuses the lowest empty
 // slot, so an adapter can keep per-vehicle state (links, files) in a vector indexed the same way.
 // A body's Tracker lives while some vehicle follows it; removing the last such vehicle drops it.
-// Thread-safety: not thread-safe (except emit_frame for disjoint slot ranges, below); snapshot()
+// Thread-safety: not thread-safe (except emit_frame after track_bodies, below); snapshot()
 // returns an independent copy.
 #pragma once
 
@@ -174,17 +174,26 @@ class Bridge {
   /// The same into `out` (cleared first): a caller that keeps `out` from frame to frame reuses
   /// its capacity, so the per-frame path does not allocate once it has grown.
   void on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out);
-  /// on_frame in two steps, for a caller that spreads the vehicles over threads (docs/daemon.md
-  /// "Threads"): track_frame does everything but the vehicles (Station, capture time, trackers;
-  /// `out` cleared, body events into it), then emit_frame lets the vehicles in slots
-  /// [first, end) (empty slots skipped, `end` clamped to slot_count()) react to that frame,
-  /// appending their messages to `messages` in slot order. track_frame followed by
-  /// emit_frame(0, slot_count()) is exactly on_frame. Calls of emit_frame for disjoint slot ranges
-  /// touch disjoint state (each vehicle's Sender; the rest is only read), so they may run on
-  /// different threads at once, provided nothing else of the Bridge runs meanwhile; calling
-  /// emit_frame twice for a slot in one frame, or before any track_frame, is a programming error.
-  void track_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out);
+  /// on_frame in steps, for a caller that sends each vehicle's poses as soon as they are built
+  /// (docs/daemon.md "Vehicles in chunks"): begin_frame does what the vehicles need before any
+  /// body (capture time, source restarts; `out` cleared). emit_frame lets the vehicles in
+  /// slots [first, end) (empty slots skipped, `end` clamped to slot_count()) react to the frame,
+  /// appending their messages to `messages` in slot order, and tracks each one's body first if
+  /// no earlier emit_frame of this frame did: the first vehicles' poses do not wait for every
+  /// body's filter. end_frame tracks the bodies no vehicle needed (disabled vehicles'), appends
+  /// the frame's body events to `out`, in body order, and gives the frame to the Station.
+  /// begin_frame, emit_frame(0, slot_count()), end_frame is exactly on_frame, and so is any order
+  /// of emit_frame calls over disjoint ranges that cover the slots: the same messages per vehicle,
+  /// the same events. `frame` must stay alive until end_frame. emit_frame for a slot twice in one
+  /// frame, or outside begin_frame … end_frame, is a programming error. Threads: emit_frame may
+  /// track, so it runs on one thread at a time; after track_bodies() (every body tracked) calls of
+  /// emit_frame for disjoint slot ranges touch disjoint state (each vehicle's Sender; the rest is
+  /// only read) and may run on different threads at once, provided nothing else of the Bridge runs
+  /// meanwhile.
+  void begin_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out);
+  void track_bodies();
   void emit_frame(std::size_t first, std::size_t end, std::vector<OutgoingMessage>& messages);
+  void end_frame(BridgeOutput& out);
   /// A decoded message from vehicle `vehicle`'s link (its slot; an empty or out-of-range slot is
   /// ignored).
   BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
@@ -246,8 +255,9 @@ class Bridge {
     std::uint8_t reset_base = 0;
     BodyEstimate published;  ///< tracker.estimate() with reset_base applied: what is sent
     /// Where this body was in the last frame's body list: sources list bodies in a stable order,
-    /// so looking there first finds it without comparing every name (track()).
+    /// so looking there first finds it without comparing every name (track_body()).
     std::size_t frame_index_hint = 0;
+    std::uint64_t tracked_frame = 0;  ///< the last frame_number_ its tracker saw
   };
   struct Vehicle {
     VehicleSpec spec;
@@ -264,7 +274,10 @@ class Bridge {
   void place_vehicle(const VehicleSpec& spec, std::size_t slot);
   [[nodiscard]] Vehicle* live(std::size_t slot);
 
-  void track(const MocapFrame& frame, HostTime capture, BridgeOutput& out);
+  /// Gives the body the current frame's sample (or its absence), once per frame.
+  void track_body(Body& body);
+  /// Body events (reset, lost, tracking) of the current frame, from each body's published state.
+  void body_events(BridgeOutput& out);
   [[nodiscard]] std::optional<GpsTime> gps_time(HostTime t) const;
   [[nodiscard]] std::uint64_t signing_now_10us(HostTime t) const;
   void vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,
@@ -279,7 +292,10 @@ class Bridge {
   std::vector<std::optional<Vehicle>> vehicles_;  // by slot; std::nullopt: removed
   std::optional<Duration> unix_minus_host_;
   std::optional<SourceTime> last_capture_;
-  SendContext frame_context_;  // of the frame track_frame() saw last (emit_frame reads it)
+  SendContext frame_context_;          // of the frame begin_frame() saw last (emit_frame reads it)
+  const MocapFrame* frame_ = nullptr;  // begin_frame … end_frame: the frame being tracked
+  std::uint64_t frame_number_ = 0;     // frames begun (Body::tracked_frame compares with it)
+  bool frame_restarted_ = false;       // the current frame is the first after a source restart
   std::uint64_t source_restarts_ = 0;
 };
 
