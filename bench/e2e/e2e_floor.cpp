@@ -3,7 +3,7 @@
 // `mocaplink run` (the [mocap] source of the e2e receivers' configuration, through the same source
 // registry and source thread), hands each frame to a loop thread the same way (the same bounded
 // queue, 256 frames, oldest dropped and counted, and one asio::post per batch), and there sends
-// one datagram per vehicle on its own connected UDP socket, in the daemon's chunks of 16 vehicles
+// one datagram per vehicle on its own connected UDP socket, in the daemon's chunks of 4 vehicles
 // and from as many threads as the daemon would use for that many vehicles (io::send_threads_for,
 // io::ForkJoin; MOCAPLINK_SEND_THREADS applies alike): a copy of one ODOMETRY frame encoded once at
 // start (the same size as mocaplink's), with only time_usec changed to the frame's host capture
@@ -137,8 +137,8 @@ int main(int argc, char** argv) {
         for (std::size_t b = 0; b < 8; ++b) {
           bytes[10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
         }
-        // The daemon's chunks: 16 vehicles, chunk i on thread i mod threads.
-        constexpr std::size_t kChunk = 16;
+        // The daemon's chunks: 4 vehicles, chunk i on thread i mod threads.
+        constexpr std::size_t kChunk = 4;
         for (std::size_t first = part * kChunk; first < sockets.size(); first += threads * kChunk) {
           for (std::size_t v = first; v < std::min(first + kChunk, sockets.size()); ++v) {
             (void)::send(sockets[v], bytes.data(), size, 0);

@@ -147,6 +147,10 @@ int main(int argc, char** argv) {
 
   std::vector<std::uint64_t> odometry(static_cast<std::size_t>(vehicles), 0);
   std::vector<std::int64_t> latencies_us;
+  // The first and the last vehicle's own latencies: the first shows what comes before any
+  // vehicle's send, the difference what each vehicle before the last adds (docs/performance.md).
+  std::vector<std::int64_t> first_vehicle_us;
+  std::vector<std::int64_t> last_vehicle_us;
   if (report_s <= 0.0) {
     latencies_us.reserve(static_cast<std::size_t>(vehicles * rate_hz * seconds * 1.1));
   }
@@ -237,6 +241,8 @@ int main(int argc, char** argv) {
               interval_latencies_us.push_back(latency_us);
             } else {
               latencies_us.push_back(latency_us);
+              if (v == 0) first_vehicle_us.push_back(latency_us);
+              if (v + 1 == sockets.size()) last_vehicle_us.push_back(latency_us);
             }
           }
           if (static_cast<std::size_t>(got) < kBatch) break;
@@ -260,8 +266,10 @@ int main(int argc, char** argv) {
   seconds = static_cast<double>(last_us - first_us) / 1e6;
   std::printf(
       "{\"vehicles\":%d,\"seconds\":%.1f,\"odometry\":%llu,\"min_per_vehicle\":%llu,"
-      "\"latency_us\":{\"p50\":%.0f,\"p99\":%.0f,\"max\":%.0f}}\n",
+      "\"latency_us\":{\"p50\":%.0f,\"p99\":%.0f,\"max\":%.0f},"
+      "\"first_vehicle_p50_us\":%.0f,\"last_vehicle_p50_us\":%.0f}\n",
       vehicles, seconds, static_cast<unsigned long long>(total),
-      static_cast<unsigned long long>(min_v), p50, p99, max_latency);
+      static_cast<unsigned long long>(min_v), p50, p99, max_latency,
+      percentile(first_vehicle_us, 0.50), percentile(last_vehicle_us, 0.50));
   return 0;
 }

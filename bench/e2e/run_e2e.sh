@@ -4,7 +4,9 @@
 # per vehicle, no logic) in the same run, right before mocaplink for each N.
 # Prints one markdown table row per N: mocap frames, ODOMETRY lost, latency p50/p99 of the floor
 # and of mocaplink (frame's host capture time → datagram received, CLOCK_MONOTONIC), mocaplink's
-# ratio to the floor, the CPU of both (user+sys as % of one core) and mocaplink's peak RSS.
+# ratio to the floor, the p50 of the first and of the last vehicle alone (what comes before any
+# vehicle's send, and what each vehicle adds), the CPU of both (user+sys as % of one core) and
+# mocaplink's peak RSS.
 # Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN FLOOR_BIN [SECONDS] [N...]
 # NICE=-10 runs every process at that priority (a shared, busy machine; needs root).
 # LOAD=compile keeps one compiler busy for the whole run (the other core loaded by a build).
@@ -34,7 +36,7 @@ prio=()
 [ -n "${NICE:-}" ] && prio=(nice -n "$NICE")
 
 # measure N BIN ARGS...: runs BIN ARGS... against N fresh receivers for $seconds; prints
-# "frames received p50_us p99_us cpu_pct rss_mib".
+# "frames received p50_us p99_us cpu_pct rss_mib first_p50_us last_p50_us".
 measure() {
   local n=$1
   shift
@@ -58,18 +60,19 @@ measure() {
     const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8").split("\n")[1]);
     const [frames, user, sys, wall, rss] = process.argv.slice(2).map(Number);
     console.log(frames, r.odometry, r.latency_us.p50, r.latency_us.p99,
-      (100 * (user + sys) / wall).toFixed(1), (rss / 1024).toFixed(1));
+      (100 * (user + sys) / wall).toFixed(1), (rss / 1024).toFixed(1),
+      r.first_vehicle_p50_us, r.last_vehicle_p50_us);
   ' "$work/recv.out" "$((frames + ${overflows:-0}))" "$user" "$sys" "$wall" "$rss_kb"
 }
 
-echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | CPU floor / mocaplink | peak RSS |"
-echo "|---:|---:|---:|---|---|---|---:|---:|"
+echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS |"
+echo "|---:|---:|---:|---|---|---|---|---|---:|---:|"
 for n in "${counts[@]}"; do
   rows=()
   for ((rep = 0; rep < ${REPEAT:-1}; rep++)); do
-    read -r ff fr fp50 fp99 fcpu _ < <(measure "$n" "$floor")
-    read -r mf mr mp50 mp99 cpu rss < <(measure "$n" "$bin" run)
-    rows+=("$ff $fr $fp50 $fp99 $fcpu $mf $mr $mp50 $mp99 $cpu $rss")
+    read -r ff fr fp50 fp99 fcpu _ ffirst flast < <(measure "$n" "$floor")
+    read -r mf mr mp50 mp99 cpu rss mfirst mlast < <(measure "$n" "$bin" run)
+    rows+=("$ff $fr $fp50 $fp99 $fcpu $mf $mr $mp50 $mp99 $cpu $rss $ffirst $flast $mfirst $mlast")
   done
   # One row per N: each column the median over the repetitions, the ratios the median of each
   # repetition's own ratio (floor and mocaplink measured back to back).
@@ -85,6 +88,7 @@ for n in "${counts[@]}"; do
     console.log(`| ${n} | ${col(5)} | ${median(reps.map((r) => lost(r, 0, 1))).toFixed(3)} % / ` +
       `${median(reps.map((r) => lost(r, 5, 6))).toFixed(3)} % | ${ms(col(2))} / ${ms(col(3))} ms | ` +
       `${ms(col(7))} / ${ms(col(8))} ms | ${ratio(7, 2)} / ${ratio(8, 3)} | ` +
+      `${ms(col(11))} / ${ms(col(12))} ms | ${ms(col(13))} / ${ms(col(14))} ms | ` +
       `${col(4).toFixed(1)} / ${col(9).toFixed(1)} % | ${col(10).toFixed(1)} MiB |`);
   ' "$n" "${rows[@]}"
 done
