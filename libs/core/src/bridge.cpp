@@ -2,6 +2,7 @@
 #include "mocaplink/core/bridge.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <utility>
 
@@ -227,6 +228,10 @@ void Bridge::on_source_connection(bool connected) {
 
 void Bridge::track_body(Body& body) {
   if (body.tracked_frame == frame_number_) return;
+  // Only between begin_frame and end_frame, and not after track_bodies(): emit_frame may then run
+  // on several threads, which must not write a body (bridge.hpp).
+  assert(frame_ != nullptr && "emit_frame outside begin_frame ... end_frame");
+  assert(!all_tracked_ && "a body left untracked after track_bodies()");
   body.tracked_frame = frame_number_;
   const MocapFrame& frame = *frame_;
   if (frame_restarted_) {
@@ -306,6 +311,7 @@ void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutpu
   }
   frame_ = &frame;
   ++frame_number_;
+  all_tracked_ = false;
   frame_context_.now = received;
   frame_context_.capture = capture;
   frame_context_.start = start_;
@@ -317,6 +323,7 @@ void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutpu
 
 void Bridge::track_bodies() {
   for (Body& body : bodies_) track_body(body);
+  all_tracked_ = true;
 }
 
 void Bridge::emit_frame(std::size_t first, std::size_t end,
@@ -332,10 +339,12 @@ void Bridge::emit_frame(std::size_t first, std::size_t end,
 }
 
 void Bridge::end_frame(BridgeOutput& out) {
+  assert(frame_ != nullptr && "end_frame without begin_frame");
   track_bodies();
   body_events(out);
   station_.on_frame(*frame_, frame_context_.now);  // figures for the dashboard: after the sends
   frame_ = nullptr;
+  all_tracked_ = false;
 }
 
 void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,

@@ -522,11 +522,16 @@ TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {
 }
 
 // begin_frame + emit_frame over slot ranges + end_frame is on_frame: the same bytes to the same
-// vehicles in the same order per vehicle, and the same events. Two ways of calling it: ranges in
-// any order from one thread, each range tracking its own vehicles' bodies on demand (the daemon
-// with one send thread), and track_bodies() first, then the ranges (as several threads would
-// run them). Six vehicles on two bodies, every profile kind, signed and decimated ones, an empty
-// slot, a disabled vehicle whose body only end_frame tracks, a body lost and found again.
+// vehicles in the same order per vehicle, the same events and the same Station and body figures
+// after every frame. Two ways of calling it: ranges in any order from one thread, each range
+// tracking its own vehicles' bodies on demand (the daemon with one send thread), and
+// track_bodies() first, then the ranges (as several threads would run them). The reference is
+// on_frame, and a third Bridge that runs every tracker before any vehicle (begin_frame,
+// track_bodies, one range, end_frame: the order before bodies were tracked on demand) must agree
+// with it too. Seven vehicles on four bodies, every profile kind, signed and decimated ones, an
+// empty slot, a disabled vehicle whose body only end_frame tracks, a body lost and found again, a
+// body that comes and goes with no vehicle sending for it, a vehicle removed (its body dropped,
+// the next body's index shifts) and added again, and a source restart.
 TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
   BridgeConfig c = two_vehicles();
   c.vehicles.push_back(vehicle("q2", "Quad", Profile::classic, 3));
@@ -535,33 +540,81 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
   c.vehicles.push_back(vehicle("gone", "Quad", Profile::px4, 6));
   c.vehicles.push_back(vehicle("r3", "Rover", Profile::px4, 7));
   c.vehicles.push_back(vehicle("off", "Spare", Profile::px4, 8));
+  c.vehicles.push_back(vehicle("solo", "Solo", Profile::px4, 9));
   c.vehicles[2].signing_key = std::array<std::uint8_t, 32>{1};
   c.vehicles[4].rate_hz = 25.0;
   c.vehicles[7].enabled = false;
+  const VehicleSpec off = c.vehicles[7];
+  // Frame n; the source restarts at frame 250 (its clock 2 s back: more than loss_timeout_ms).
+  const auto frame = [](std::uint64_t n) {
+    MocapFrame f = frame_at(n, n < 100 || n > 200, true);  // Quad lost for a second
+    if (n >= 250) f.capture_time -= seconds(2);
+    BodySample extra = f.bodies.back();
+    extra.name = "Solo";
+    f.bodies.push_back(extra);
+    extra.name = "Spare";
+    if (n % 100 < 50) f.bodies.push_back(extra);  // Spare comes and goes
+    return f;
+  };
+  const auto same_figures = [](const BridgeSnapshot& a, const BridgeSnapshot& b) {
+    EXPECT_EQ(a.station.frames, b.station.frames);
+    EXPECT_EQ(a.station.last_frame_number, b.station.last_frame_number);
+    EXPECT_EQ(a.station.bodies.size(), b.station.bodies.size());
+    EXPECT_EQ(a.source_restarts, b.source_restarts);
+    ASSERT_EQ(a.bodies.size(), b.bodies.size());
+    for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+      EXPECT_EQ(a.bodies[i].name, b.bodies[i].name);
+      EXPECT_EQ(a.bodies[i].estimate.state, b.bodies[i].estimate.state);
+      EXPECT_EQ(a.bodies[i].estimate.reset_counter, b.bodies[i].estimate.reset_counter);
+      EXPECT_EQ(a.bodies[i].estimate.counters.accepted, b.bodies[i].estimate.counters.accepted);
+      EXPECT_EQ(a.bodies[i].estimate.p_ned_m, b.bodies[i].estimate.p_ned_m);
+    }
+  };
   for (const bool track_first : {false, true}) {
     SCOPED_TRACE(track_first ? "track_bodies first" : "bodies tracked on demand");
     Bridge whole = make_bridge(c);
     Bridge steps = make_bridge(c);
-    for (Bridge* b : {&whole, &steps}) {
+    Bridge eager = make_bridge(c);
+    for (Bridge* b : {&whole, &steps, &eager}) {
       b->set_wall_clock(HostTime{seconds(100)}, 1'790'000'000'000'000);
       ASSERT_TRUE(b->remove_vehicle(5));  // "gone": an empty slot inside a range
     }
     using Bytes = std::vector<std::uint8_t>;
     std::map<std::size_t, std::vector<Bytes>> sent_whole;
     std::map<std::size_t, std::vector<Bytes>> sent_steps;
-    std::size_t events = 0;
+    std::map<std::size_t, std::vector<Bytes>> sent_eager;
+    std::map<BridgeEventKind, std::size_t> kinds;
     BridgeOutput out;
     std::vector<OutgoingMessage> part;
     for (std::uint64_t n = 1; n <= 300; ++n) {
-      MocapFrame f = frame_at(n, n < 100 || n > 200, true);  // Quad lost for a second
-      BodySample spare = f.bodies.back();
-      spare.name = "Spare";
-      if (n % 100 < 50) f.bodies.push_back(spare);  // Spare comes and goes: events, no vehicle
+      if (n == 150) {  // "off" goes, and Spare with it: Solo's body index moves down by one
+        for (Bridge* b : {&whole, &steps, &eager}) ASSERT_TRUE(b->remove_vehicle(7));
+      }
+      if (n == 170) {  // and comes back, into the lowest empty slot (5), Spare tracked again
+        for (Bridge* b : {&whole, &steps, &eager}) {
+          const auto added = b->add_vehicle(off);
+          ASSERT_TRUE(std::holds_alternative<std::size_t>(added));
+          ASSERT_EQ(std::get<std::size_t>(added), 5u);
+        }
+      }
+      const MocapFrame f = frame(n);
       whole.on_frame(f, received_at(n), out);
       for (const auto& m : out.messages) {
         sent_whole[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
       }
       const std::vector<BridgeEvent> whole_events = out.events;
+      for (const auto& e : whole_events) ++kinds[e.kind];
+
+      eager.begin_frame(f, received_at(n), out);
+      eager.track_bodies();
+      part.clear();
+      eager.emit_frame(0, eager.slot_count(), part);
+      for (const auto& m : part) {
+        sent_eager[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+      }
+      eager.end_frame(out);
+      ASSERT_EQ(out.events.size(), whole_events.size());
+
       steps.begin_frame(f, received_at(n), out);
       if (track_first) steps.track_bodies();
       // Ranges [4, 99), [2, 4), [0, 2), the way three threads might finish.
@@ -579,16 +632,22 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
       ASSERT_EQ(out.messages.size(), 0u);
       ASSERT_EQ(out.events.size(), whole_events.size());
       for (std::size_t e = 0; e < whole_events.size(); ++e) {
-        EXPECT_EQ(out.events[e].text, whole_events[e].text);
+        EXPECT_EQ(out.events[e].kind, whole_events[e].kind);
+        EXPECT_EQ(out.events[e].time, whole_events[e].time);
         EXPECT_EQ(out.events[e].subject, whole_events[e].subject);
+        EXPECT_EQ(out.events[e].text, whole_events[e].text);
       }
-      events += whole_events.size();
+      const HostTime t = received_at(n);
+      same_figures(steps.snapshot(t), whole.snapshot(t));
+      same_figures(eager.snapshot(t), whole.snapshot(t));
     }
-    EXPECT_GE(events, 6u);  // the Quad lost and found, Spare lost and found twice or more
-    EXPECT_EQ(sent_whole.size(), 6u);  // every live, enabled vehicle sent something
-    EXPECT_EQ(sent_whole.count(5), 0u);
-    EXPECT_EQ(sent_whole.count(7), 0u);
+    EXPECT_GE(kinds[BridgeEventKind::body_lost], 2u);   // the Quad, and Spare in frames 50-99
+    EXPECT_GE(kinds[BridgeEventKind::body_reset], 3u);  // the restart resets every body
+    EXPECT_EQ(whole.snapshot(received_at(300)).source_restarts, 1u);
+    EXPECT_EQ(sent_whole.size(), 7u);    // every live, enabled vehicle sent something
+    EXPECT_EQ(sent_whole.count(5), 0u);  // "gone", then the disabled "off"
     EXPECT_EQ(sent_steps, sent_whole);
+    EXPECT_EQ(sent_eager, sent_whole);
   }
 }
 

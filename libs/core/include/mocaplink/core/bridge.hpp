@@ -20,7 +20,9 @@
 // times) and every body's reset_counter advances, so the vehicles treat the next pose as a reset.
 //
 // Per frame: every tracker gets its body's sample (on_sample), or on_missing when the body is not
-// in the frame; then each enabled vehicle's Sender sees its body's estimate. Vehicles whose body
+// in the frame, once; each enabled vehicle's Sender sees its body's estimate after that body's
+// tracker has run (on_frame runs a body's tracker when its first vehicle needs it, see
+// begin_frame). Vehicles whose body
 // is never seen send nothing but heartbeats (and GPS fix 0 only once the body was seen).
 // Vehicles can be added and removed while the bridge runs (the dashboard). A vehicle is named by
 // its slot index: the index it had in config.vehicles, or the one add_vehicle() returned. Slots
@@ -296,6 +298,7 @@ class Bridge {
   const MocapFrame* frame_ = nullptr;  // begin_frame … end_frame: the frame being tracked
   std::uint64_t frame_number_ = 0;     // frames begun (Body::tracked_frame compares with it)
   bool frame_restarted_ = false;       // the current frame is the first after a source restart
+  bool all_tracked_ = false;           // track_bodies() ran in this frame (asserted by track_body)
   std::uint64_t source_restarts_ = 0;
 };
 
