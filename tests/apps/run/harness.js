@@ -95,7 +95,10 @@ class UdpVehicle {
   constructor() {
     this.packets = [];
     this.datagrams = 0;
-    this.socket = dgram.createSocket('udp4');
+    // The largest receive buffer the kernel grants without privileges (net.core.rmem_max): a
+    // busy machine can hold node's loop back for a while, and a full buffer drops datagrams that
+    // the bridge did send (seen in /proc/net/snmp RcvbufErrors), which a test would blame on it.
+    this.socket = dgram.createSocket({ type: 'udp4', recvBufferSize: 8 << 20 });
     this.decoder = new Decoder((packet, t) => this.packets.push({ packet, t }));
     this.socket.on('message', (msg, rinfo) => {
       this.datagrams += 1;

@@ -1,11 +1,13 @@
 // End to end (issue 15): a fleet big enough to be sent from several threads. sim:// (10 bodies,
-// 60 Hz, 300 frames) → `mocaplink run` with 300 UDP vehicles at 60 Hz and MOCAPLINK_SEND_THREADS=3
+// 30 Hz, 150 frames) → `mocaplink run` with 300 UDP vehicles at 30 Hz and MOCAPLINK_SEND_THREADS=3
 // (io/send_threads.hpp: one thread per 100 vehicles, so all three send) → 300 sockets decoded by
 // node-mavlink. The daemon must say it sends from 3 threads, and the threads must change nothing a
 // vehicle sees: each vehicle's frames arrive with consecutive sequence numbers (nothing reordered
 // or sent twice), its ODOMETRY in capture order, and every vehicle following a body gets exactly
 // the poses the others following it get (frames are never split between vehicles, even when the
-// machine is too slow and frames are dropped whole).
+// machine is too slow and frames are dropped whole). 30 Hz, not more: node decoding 300 sockets
+// under emulation on a busy machine fell behind at 60 Hz and the kernel dropped datagrams at its
+// sockets (RcvbufErrors), which this test cannot tell from a bridge that lost them.
 'use strict';
 
 const path = require('node:path');
@@ -20,10 +22,10 @@ async function main() {
   const vehicles = [];
   for (let i = 0; i < VEHICLES; i += 1) vehicles.push(await new h.UdpVehicle().bind());
   const config = h.writeConfig(path.join(dir, 'fleet.toml'),
-    `sim://?bodies=${BODIES}&rate_hz=60&frames=300&seed=3`,
+    `sim://?bodies=${BODIES}&rate_hz=30&frames=150&seed=3`,
     vehicles.map((v, i) => ({
       name: `v${i + 1}`, body: `Body${(i % BODIES) + 1}`, link: `udp://127.0.0.1:${v.port}`,
-      system_id: (i % 250) + 1, profile: 'px4', rate_hz: 60,
+      system_id: (i % 250) + 1, profile: 'px4', rate_hz: 30,
     })));
   const run = h.mocaplink(['run', '--config', config],
     { env: { MOCAPLINK_SEND_THREADS: '3', MOCAPLINK_STATE_DIR: dir } });
@@ -43,7 +45,7 @@ async function main() {
         `v${i + 1}: frame ${k} out of sequence`);
     }
     const times = v.ofId(ID.ODOMETRY).map((p) => h.decode(p.packet).timeUsec);
-    assert.ok(times.length > 100, `v${i + 1}: only ${times.length} ODOMETRY`);
+    assert.ok(times.length > 50, `v${i + 1}: only ${times.length} ODOMETRY`);
     for (let k = 1; k < times.length; k += 1) {
       assert.ok(times[k] > times[k - 1], `v${i + 1}: ODOMETRY ${k} not after the one before`);
     }
