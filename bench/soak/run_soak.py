@@ -97,8 +97,10 @@ def dashboard_clients(stop, stats):
                         break
                 conn.close()
             stats["dashboard_ok"] += 1
-        except (OSError, http.client.HTTPException, ValueError):
+        except (OSError, http.client.HTTPException, ValueError) as e:
             stats["dashboard_failed"] += 1
+            # When and why, in summary.json: a failure near the end may be the bridge stopping.
+            stats.setdefault("dashboard_errors", []).append(f"{time.strftime('%H:%M:%S')} {e!r}")
         stop.wait(rng.uniform(1, 8))
 
 
