@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <asio.hpp>
 
 #include "../vicon/vicon_test_support.hpp"
 #include "mocaplink/sources/qtm_server.hpp"
@@ -176,6 +177,44 @@ TEST(QtmLoopback, ABodyListChangeIsAnEventAndTheNamesAreReadAgain) {
   EXPECT_GE(source.qtm_counters().parameter_reads, 3u);
   EXPECT_GE(source.qtm_counters().events, 2u);
   EXPECT_GE(server.counters().body_list_changes, 2u);
+}
+
+// Before the first frame there is no body list, and the official client reads the list once, at
+// connect: a connection waits unwelcomed until the first frame, however many ticks pass.
+TEST(QtmLoopback, AConnectionIsWelcomedOnlyFromTheFirstFrameOn) {
+  QtmServerOptions options;
+  options.listen_host = "127.0.0.1";
+  options.port = 0;
+  options.rate_hz = 200.0;
+  std::atomic<bool> frames{false};
+  std::atomic<std::uint64_t> ticks{0};
+  QtmServer server(options);  // after what its provider reads: stopped before they go
+  ASSERT_FALSE(server.start([&](std::uint64_t tick) {
+    ++ticks;
+    return frames ? std::optional<core::MocapFrame>(frame(tick + 1)) : std::nullopt;
+  }));
+  asio::io_context io;
+  asio::ip::tcp::socket client(io);
+  client.connect({asio::ip::make_address("127.0.0.1"), server.port()});
+  // The connection is in the backlog now; the server's loop runs a few more ticks, which it would
+  // not do without taking up a ready connection first if it were accepting.
+  const auto wait_ticks = [&](std::uint64_t n) {
+    const auto until = std::chrono::steady_clock::now() + test::kWaitCap;
+    while (ticks < n && std::chrono::steady_clock::now() < until) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return ticks >= n;
+  };
+  ASSERT_TRUE(wait_ticks(ticks + 3));
+  EXPECT_EQ(server.counters().clients_accepted, 0u);
+  frames = true;
+  const auto welcome = wq::ServerSession::welcome();
+  std::vector<std::byte> got(welcome.size());
+  asio::read(client, asio::buffer(got));
+  EXPECT_EQ(got, welcome);
+  EXPECT_EQ(server.counters().clients_accepted, 1u);
+  EXPECT_GE(server.counters().frames, 1u);
+  server.stop();
 }
 
 TEST(QtmLoopback, ReconnectsAfterARestartAndNeverDeliversAStalePose) {

@@ -51,11 +51,12 @@ class QtmServer::Impl {
 
   void run(FrameProvider provider) {
     provider_ = std::move(provider);
-    accept();
     if (provider_) {
       started_ = std::chrono::steady_clock::now();
       tick();
     }
+    // Until the first frame nothing may be pending (no accept yet): run until stop().
+    const auto idle = asio::make_work_guard(io_);
     io_.run();
     asio::error_code ignored;
     acceptor_.close(ignored);
@@ -112,6 +113,9 @@ class QtmServer::Impl {
     auto served = std::make_shared<wq::ServedFrame>(wq::served_frame(frame));
     ++counters_.frames;
     const bool changed = latest_ && latest_->names != served->names;
+    // Clients are welcomed from the first frame on: before it there is no body list to answer
+    // GetParameters with, and the official client reads that list once, at connect.
+    if (!latest_) accept();
     latest_ = served;
     const std::vector<ClientPtr> all(clients_.begin(), clients_.end());
     if (changed) {

@@ -6,10 +6,12 @@
 // Each connection has its own wire::qtm::ServerSession (version, XML format, stream request).
 // Frames come from publish() (any thread) and/or a FrameProvider at rate_hz; each is served to
 // every streaming client over TCP or as one UDP datagram to the port (and address) its
-// StreamFrames named. The body list is the frame's body names in order; when it changes (a body
-// appears or leaves, e.g. sim://?churn_s) every client gets event 11 (Camera Settings Changed),
-// after which GetParameters answers the new list. Untracked bodies are sent as NaN. A client that
-// stops reading loses whole frames (counted), then is closed when its replies pile up too.
+// StreamFrames named. Connections wait in the listen backlog until the first frame: a client is
+// welcomed when there is a body list to give it, as a real QTM has its list before any client. The
+// body list is the frame's body names in order; when it changes (a body appears or leaves, e.g.
+// sim://?churn_s) every client gets event 11 (Camera Settings Changed), after which GetParameters
+// answers the new list. Untracked bodies are sent as NaN. A client that stops reading loses whole
+// frames (counted), then is closed when its replies pile up too.
 #pragma once
 
 #include <atomic>
