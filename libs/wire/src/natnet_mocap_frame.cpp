@@ -127,7 +127,8 @@ FrameOfData ServedModels::frame_of(const core::MocapFrame& frame, bool y_up,
     }
     out.rigid_bodies.push_back(rb);
   }
-  if (!first_ && names != current_) out.params |= kParamModelsChanged;
+  // Before the first frame the list is empty: a change only for a client that was told so.
+  if ((!first_ || described_) && names != current_) out.params |= kParamModelsChanged;
   first_ = false;
   current_ = std::move(names);
   const std::int64_t capture_ns = frame.capture_time.time_since_epoch().count();
@@ -141,7 +142,8 @@ FrameOfData ServedModels::frame_of(const core::MocapFrame& frame, bool y_up,
   return out;
 }
 
-ModelDefinitions ServedModels::definitions() const {
+ModelDefinitions ServedModels::definitions() {
+  described_ = true;
   ModelDefinitions defs;
   for (const std::string& name : current_) {
     RigidBodyDescription rb;

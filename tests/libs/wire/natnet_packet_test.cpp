@@ -544,4 +544,22 @@ TEST(NatnetMapping, ServedModelsFlagTheChange) {
   EXPECT_EQ(back.rigid_bodies[1].id, 2);  // ids stay with their names
 }
 
+// A client that asked for the models before the first frame was told of an empty list: the first
+// frame flags the change, so the client asks again (a client that asked nothing is not prompted).
+TEST(NatnetMapping, TheFirstFrameFlagsTheChangeOnlyAfterAnEmptyListWasDescribed) {
+  mocaplink::core::MocapFrame f;
+  f.bodies.resize(1);
+  f.bodies[0].name = "Body1";
+  nn::ServedModels asked;
+  EXPECT_TRUE(asked.definitions().rigid_bodies.empty());
+  EXPECT_NE(asked.frame_of(f, true, 1'000'000).params & nn::kParamModelsChanged, 0);
+  EXPECT_EQ(asked.frame_of(f, true, 1'000'000).params & nn::kParamModelsChanged, 0);
+  ASSERT_EQ(asked.definitions().rigid_bodies.size(), 1u);
+  EXPECT_EQ(asked.definitions().rigid_bodies[0].name, "Body1");
+
+  nn::ServedModels empty_frames;  // a frame without bodies is no change from the empty list
+  (void)empty_frames.definitions();
+  EXPECT_EQ(empty_frames.frame_of({}, true, 1'000'000).params & nn::kParamModelsChanged, 0);
+}
+
 }  // namespace

@@ -52,16 +52,19 @@ class ServedModels {
  public:
   /// `frame` (z-up, metres) as a NatNet frame; `y_up` converts to Motive's Y-up world;
   /// `clock_hz` > 0 sets the tick timestamps from capture_time and source_latency. Sets
-  /// kParamModelsChanged when the body list differs from the previous frame's.
+  /// kParamModelsChanged when the body list differs from the previous frame's, or, on the first
+  /// frame, from the empty list that definitions() described before it.
   [[nodiscard]] FrameOfData frame_of(const core::MocapFrame& frame, bool y_up,
                                      std::uint64_t clock_hz);
-  /// The model definitions of the current body list (rigid bodies only, no markers).
-  [[nodiscard]] ModelDefinitions definitions() const;
+  /// The model definitions of the current body list (rigid bodies only, no markers); empty
+  /// before the first frame.
+  [[nodiscard]] ModelDefinitions definitions();
 
  private:
   std::map<std::string, std::int32_t> ids_;
   std::vector<std::string> current_;
   bool first_ = true;
+  bool described_ = false;  ///< definitions() was called: a client holds a list
 };
 
 }  // namespace mocaplink::wire::natnet

@@ -9,7 +9,8 @@
 //              NAT_DISCONNECT or nothing (no keep-alive) for keepalive_timeout.
 // Bodies get ids 1, 2, … by name in order of first appearance and keep them; a frame whose body
 // list differs from the previous one is served with the "models changed" bit (and the next two
-// frames too, in case one is lost), and NAT_MODELDEF describes the current list. Untracked bodies
+// frames too, in case one is lost), and NAT_MODELDEF describes the current list (empty before the
+// first frame, so the first frame is flagged too if a client asked before it). Untracked bodies
 // are served with the tracking-valid bit clear and a zero pose. The frames given are z-up (the
 // simulator's and recordings' world); with `y_up` (the default, as Motive streams) they are turned
 // into Motive's Y-up world: (x, y, z) → (x, z, −y). Timestamps use a 10 MHz clock:
