@@ -7,9 +7,11 @@
 // and from as many threads as the daemon would use for that many vehicles (io::send_threads_for,
 // io::ForkJoin; MOCAPLINK_SEND_THREADS applies alike): a copy of one ODOMETRY frame encoded once at
 // start (the same size as mocaplink's), with only time_usec changed to the frame's host capture
-// time (core::CaptureTimeMapper, as the bridge stamps it). No tracking, no decimation, no encoding,
-// no logic. Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT
-// and prints "floor: N frames, M queue overflows, ..." on stderr)
+// time (core::CaptureTimeMapper, as the bridge stamps it) and the header's system id set to each
+// vehicle's (as mocaplink sends it; e2e_receivers --sockets shared tells vehicles apart by it; the
+// checksum is left as it is). No tracking, no decimation, no encoding, no logic.
+// Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT and prints
+// "floor: N frames, M queue overflows, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -40,9 +42,14 @@
 
 namespace {
 
+struct Vehicle {
+  std::uint16_t port = 0;
+  std::uint8_t system_id = 1;
+};
+
 struct Config {
   std::string source;
-  std::vector<std::uint16_t> ports;
+  std::vector<Vehicle> vehicles;  // in the file's order: one per udp://127.0.0.1 link
 };
 
 Config read_config(const std::string& path) {
@@ -50,11 +57,15 @@ Config read_config(const std::string& path) {
   std::ifstream in(path);
   const std::regex source(R"re(^source = "(.*)"$)re");
   const std::regex link(R"re(^link = "udp://127\.0\.0\.1:(\d+)"$)re");
+  const std::regex system_id(R"re(^system_id = (\d+)$)re");
   std::smatch m;
   for (std::string line; std::getline(in, line);) {
     if (std::regex_match(line, m, source)) c.source = m[1];
     if (std::regex_match(line, m, link)) {
-      c.ports.push_back(static_cast<std::uint16_t>(std::stoi(m[1])));
+      c.vehicles.push_back(Vehicle{static_cast<std::uint16_t>(std::stoi(m[1]))});
+    }
+    if (std::regex_match(line, m, system_id) && !c.vehicles.empty()) {  // after its link line
+      c.vehicles.back().system_id = static_cast<std::uint8_t>(std::stoi(m[1]));
     }
   }
   return c;
@@ -68,16 +79,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   const Config config = read_config(argv[2]);
-  if (config.source.empty() || config.ports.empty()) {
+  if (config.source.empty() || config.vehicles.empty()) {
     std::fprintf(stderr, "e2e_floor: no source or no udp://127.0.0.1 links in %s\n", argv[2]);
     return 1;
   }
   std::vector<int> sockets;
-  for (const std::uint16_t port : config.ports) {
+  for (const Vehicle& vehicle : config.vehicles) {
     const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
-    addr.sin_port = htons(port);
+    addr.sin_port = htons(vehicle.port);
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
     if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
       std::perror("e2e_floor: socket");
@@ -141,6 +152,7 @@ int main(int argc, char** argv) {
         constexpr std::size_t kChunk = 4;
         for (std::size_t first = part * kChunk; first < sockets.size(); first += threads * kChunk) {
           for (std::size_t v = first; v < std::min(first + kChunk, sockets.size()); ++v) {
+            bytes[5] = config.vehicles[v].system_id;
             (void)::send(sockets[v], bytes.data(), size, 0);
           }
         }

@@ -9,14 +9,23 @@
 // little as they can, they never sleep on the sockets (a sender waking a receiver per datagram
 // would pay the wake-up inside its send) but poll every --poll-ms and read whatever arrived with
 // recvmmsg. The kernel's timestamps make the latency independent of the polling.
+// With --sockets shared, 250 vehicles share a socket (a large receive buffer, read in batches of
+// 64; the configuration refuses one system id twice on a link), and a datagram's vehicle is told
+// by its socket and the system id in its MAVLink header: vehicle i (from 0) sends to socket
+// i div 250 with system_id i mod 250 + 1 (the floor stamps the ids too). For hundreds of vehicles
+// this costs the machine a fraction of N sockets' polling (one recvmmsg per 64 datagrams, not one
+// per socket that has anything), so what is measured is the bridge. mocaplink warns at start that
+// the vehicles share links.
 // Stops when nothing has arrived for --idle-s after the first datagram (the bridge was stopped),
 // and prints one JSON line.
 // Usage: e2e_receivers --vehicles N --config OUT.toml [--seconds 30] [--rate-hz 240]
 //                      [--mocap-hz 240] [--bodies 64] [--source URL] [--http ADDR]
 //                      [--first-address 127.0.0.2] [--report-s S] [--idle-s 1.5] [--poll-ms 2]
+//                      [--sockets each|shared]
 // --source replaces the sim:// source, --http adds a dashboard, --first-address binds vehicle 1 to
 // another loopback address (bench/soak black-holes it), --report-s also prints one JSON line every
-// S seconds with what arrived in that interval (bench/soak), --idle-s is the silence that ends it.
+// S seconds with what arrived in that interval (bench/soak), --idle-s is the silence that ends it
+// (--first-address needs --sockets each).
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -77,6 +86,7 @@ int main(int argc, char** argv) {
   double report_s = 0.0;
   double idle_s = 1.5;
   double poll_ms = 2.0;
+  std::string sockets_mode = "each";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     const char* value = argv[i + 1];
@@ -92,6 +102,17 @@ int main(int argc, char** argv) {
     if (key == "--report-s") report_s = std::atof(value);
     if (key == "--idle-s") idle_s = std::atof(value);
     if (key == "--poll-ms") poll_ms = std::atof(value);
+    if (key == "--sockets") sockets_mode = value;
+  }
+  const bool shared = sockets_mode == "shared";
+  constexpr int kPerSocket = 250;  // system ids 1..250 on one socket
+  if (!shared && sockets_mode != "each") {
+    std::fprintf(stderr, "--sockets is each or shared, not %s\n", sockets_mode.c_str());
+    return 1;
+  }
+  if (shared && first_address != "127.0.0.1") {
+    std::fprintf(stderr, "--first-address needs --sockets each\n");
+    return 1;
   }
   if (vehicles < 1 || config_path.empty()) {
     std::fprintf(stderr, "usage: e2e_receivers --vehicles N --config OUT.toml [...]\n");
@@ -108,38 +129,45 @@ int main(int argc, char** argv) {
     std::fprintf(config, "[mocap]\nsource = \"%s\"\n", source.c_str());
   }
   if (!http.empty()) std::fprintf(config, "[http]\nlisten = \"%s\"\n", http.c_str());
+  std::uint16_t port = 0;  // the port of vehicle i's socket
   for (int i = 0; i < vehicles; ++i) {
-    const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
-    const int buffer = 1 << 20;
-    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
-    const int on = 1;
-    if (::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on) != 0) {
-      std::perror("SO_TIMESTAMPNS");
-      return 1;
+    if (!shared || i % kPerSocket == 0) {
+      const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
+      const int buffer = shared ? 64 << 20 : 1 << 20;
+      // Beyond net.core.rmem_max only with CAP_NET_ADMIN (root); else what the system allows.
+      if (!shared || ::setsockopt(fd, SOL_SOCKET, SO_RCVBUFFORCE, &buffer, sizeof buffer) != 0) {
+        ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &buffer, sizeof buffer);
+      }
+      const int on = 1;
+      if (::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on) != 0) {
+        std::perror("SO_TIMESTAMPNS");
+        return 1;
+      }
+      sockaddr_in addr{};
+      addr.sin_family = AF_INET;
+      addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      if (i == 0 && ::inet_pton(AF_INET, first_address.c_str(), &addr.sin_addr) != 1) {
+        std::fprintf(stderr, "bad --first-address %s\n", first_address.c_str());
+        return 1;
+      }
+      socklen_t len = sizeof addr;
+      if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
+          ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+        std::perror("bind");
+        return 1;
+      }
+      epoll_event ev{};
+      ev.events = EPOLLIN;
+      ev.data.u32 = static_cast<std::uint32_t>(sockets.size());
+      ::epoll_ctl(epoll, EPOLL_CTL_ADD, fd, &ev);
+      sockets.push_back(fd);
+      port = ntohs(addr.sin_port);
     }
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (i == 0 && ::inet_pton(AF_INET, first_address.c_str(), &addr.sin_addr) != 1) {
-      std::fprintf(stderr, "bad --first-address %s\n", first_address.c_str());
-      return 1;
-    }
-    socklen_t len = sizeof addr;
-    if (::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
-        ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
-      std::perror("bind");
-      return 1;
-    }
-    epoll_event ev{};
-    ev.events = EPOLLIN;
-    ev.data.u32 = static_cast<std::uint32_t>(i);
-    ::epoll_ctl(epoll, EPOLL_CTL_ADD, fd, &ev);
-    sockets.push_back(fd);
     std::fprintf(config,
                  "[[vehicle]]\nname = \"v%d\"\nbody = \"Body%d\"\nlink = \"udp://%s:%d\"\n"
                  "system_id = %d\nprofile = \"px4\"\nrate_hz = %g\n",
-                 i + 1, i % bodies + 1, i == 0 ? first_address.c_str() : "127.0.0.1",
-                 ntohs(addr.sin_port), i % 250 + 1, rate_hz);
+                 i + 1, i % bodies + 1, i == 0 ? first_address.c_str() : "127.0.0.1", port,
+                 i % kPerSocket + 1, rate_hz);
   }
   std::fclose(config);
   std::printf("ready\n");
@@ -155,7 +183,7 @@ int main(int argc, char** argv) {
     latencies_us.reserve(static_cast<std::size_t>(vehicles * rate_hz * seconds * 1.1));
   }
   std::array<epoll_event, 1024> events{};
-  constexpr std::size_t kBatch = 16;
+  constexpr std::size_t kBatch = 64;
   std::array<std::array<std::uint8_t, 2048>, kBatch> buffers{};
   std::array<std::array<char, CMSG_SPACE(sizeof(timespec))>, kBatch> controls{};
   std::array<iovec, kBatch> iov{};
@@ -195,7 +223,7 @@ int main(int argc, char** argv) {
       const int n = ::epoll_wait(epoll, events.data(), static_cast<int>(events.size()), 0);
       if (n <= 0) break;
       for (int e = 0; e < n; ++e) {
-        const std::uint32_t v = events[static_cast<std::size_t>(e)].data.u32;
+        const std::uint32_t socket = events[static_cast<std::size_t>(e)].data.u32;
         while (true) {
           for (std::size_t m = 0; m < kBatch; ++m) {
             iov[m] = iovec{buffers[m].data(), buffers[m].size()};
@@ -205,7 +233,7 @@ int main(int argc, char** argv) {
             msgs[m].msg_hdr.msg_control = controls[m].data();
             msgs[m].msg_hdr.msg_controllen = controls[m].size();
           }
-          const int got = ::recvmmsg(sockets[v], msgs.data(), kBatch, MSG_DONTWAIT, nullptr);
+          const int got = ::recvmmsg(sockets[socket], msgs.data(), kBatch, MSG_DONTWAIT, nullptr);
           if (got <= 0) break;
           const std::int64_t now_us = monotonic_us();
           if (first_us == 0) first_us = now_us;
@@ -218,6 +246,13 @@ int main(int argc, char** argv) {
             const std::uint32_t msgid = std::uint32_t{buffer[7]} | (std::uint32_t{buffer[8]} << 8) |
                                         (std::uint32_t{buffer[9]} << 16);
             if (msgid != 331) continue;
+            // The vehicle: its socket, or a shared socket's and its system id.
+            std::size_t v = socket;
+            if (shared) {
+              if (buffer[5] < 1) continue;
+              v = std::size_t{socket} * std::size_t{kPerSocket} + std::size_t{buffer[5]} - 1;
+              if (v >= odometry.size()) continue;
+            }
             std::uint64_t time_usec = 0;
             for (std::size_t b = 0; b < 8; ++b) {
               time_usec |= std::uint64_t{buffer[10 + b]} << (8 * b);
@@ -242,7 +277,7 @@ int main(int argc, char** argv) {
             } else {
               latencies_us.push_back(latency_us);
               if (v == 0) first_vehicle_us.push_back(latency_us);
-              if (v + 1 == sockets.size()) last_vehicle_us.push_back(latency_us);
+              if (v + 1 == odometry.size()) last_vehicle_us.push_back(latency_us);
             }
           }
           if (static_cast<std::size_t>(got) < kBatch) break;

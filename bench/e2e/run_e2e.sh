@@ -12,6 +12,8 @@
 # LOAD=compile keeps one compiler busy for the whole run (the other core loaded by a build).
 # REPEAT=K measures floor and mocaplink K times per N, back to back, and prints the medians (the
 # ratios: the median of each repetition's ratio). POLL_MS sets the receivers' polling (default 2).
+# SOCKETS=shared makes 250 vehicles share each receiving socket (e2e_receivers --sockets shared),
+# so that the receivers cost the machine little even for 1000 vehicles.
 set -euo pipefail
 bin=$1
 receivers=$2
@@ -40,7 +42,8 @@ prio=()
 measure() {
   local n=$1
   shift
-  "${prio[@]}" "$receivers" --vehicles "$n" --config "$work/c.toml" --poll-ms "${POLL_MS:-2}" > "$work/recv.out" &
+  "${prio[@]}" "$receivers" --vehicles "$n" --config "$work/c.toml" --poll-ms "${POLL_MS:-2}" \
+    --sockets "${SOCKETS:-each}" > "$work/recv.out" &
   local rpid=$!
   while ! grep -q ready "$work/recv.out" 2>/dev/null; do sleep 0.1; done
   MOCAPLINK_STATE_DIR="$work/state" MOCAPLINK_SUMMARY_S=3600 /usr/bin/time -f '%U %S %e %M' \
@@ -49,6 +52,12 @@ measure() {
   sleep "$seconds"
   pkill -TERM -P "$tpid" || true  # the child of /usr/bin/time (or nice's exec)
   wait "$tpid" || true
+  if ! grep -q -e 'final: source' -e '^floor:' "$work/run.err"; then  # it never ran: say why
+    kill "$rpid"
+    echo "run_e2e: $1 did not run:" >&2
+    { grep -v '^warning' "$work/run.err" || true; } | tail -5 >&2
+    exit 1
+  fi
   wait "$rpid"
   local user sys wall rss_kb frames overflows
   read -r user sys wall rss_kb < "$work/time.out"
