@@ -127,9 +127,8 @@ FrameOfData ServedModels::frame_of(const core::MocapFrame& frame, bool y_up,
     }
     out.rigid_bodies.push_back(rb);
   }
-  // Before the first frame the list is empty: a change only for a client that was told so.
-  if ((!first_ || described_) && names != current_) out.params |= kParamModelsChanged;
-  first_ = false;
+  if (listed_ && names != current_) out.params |= kParamModelsChanged;
+  listed_ = true;
   current_ = std::move(names);
   const std::int64_t capture_ns = frame.capture_time.time_since_epoch().count();
   out.timestamp_s = static_cast<double>(capture_ns) / 1e9;
@@ -143,7 +142,7 @@ FrameOfData ServedModels::frame_of(const core::MocapFrame& frame, bool y_up,
 }
 
 ModelDefinitions ServedModels::definitions() {
-  described_ = true;
+  listed_ = true;
   ModelDefinitions defs;
   for (const std::string& name : current_) {
     RigidBodyDescription rb;

@@ -63,8 +63,9 @@ class ServedModels {
  private:
   std::map<std::string, std::int32_t> ids_;
   std::vector<std::string> current_;
-  bool first_ = true;
-  bool described_ = false;  ///< definitions() was called: a client holds a list
+  /// A client may hold current_: a frame carried it, or definitions() described it (the empty
+  /// list before the first frame). Only a change from a list someone holds is flagged.
+  bool listed_ = false;
 };
 
 }  // namespace mocaplink::wire::natnet
