@@ -101,7 +101,8 @@ void UdpLink::schedule_retry(const std::string& why) {
 
 void UdpLink::receive() {
   socket_.async_receive(
-      asio::buffer(receive_buffer_), [this](const std::error_code& error, std::size_t n) {
+      asio::buffer(receive_buffer_.get(), kReceiveBufferSize),
+      [this](const std::error_code& error, std::size_t n) {
         if (error == asio::error::operation_aborted || state() == LinkState::closed) return;
         if (error) {
           if (is_refused(error)) {
@@ -110,7 +111,7 @@ void UdpLink::receive() {
             ++counters_.receive_errors;
           }
         } else {
-          receive_datagram(std::span<const std::uint8_t>(receive_buffer_.data(), n));
+          receive_datagram(std::span<const std::uint8_t>(receive_buffer_.get(), n));
         }
         if (socket_.is_open()) receive();
       });

@@ -83,6 +83,29 @@ TEST(UdpLink, SendsAndReadsRepliesOnTheSameSocket) {
   EXPECT_EQ(c.connects, 1u);
 }
 
+// A vehicle (or a router in front of it) may pack frames into one datagram up to the largest
+// UDP payload over IPv4 (65 507 bytes): every frame of it arrives, none is cut off.
+TEST(UdpLink, TheLargestDatagramArrivesWhole) {
+  asio::io_context loop;
+  Vehicle vehicle(loop);
+  UdpLink link(loop, "127.0.0.1", vehicle.port(), test::options());
+  Received received;
+  link.start(collect(received), {});
+  ASSERT_EQ(link.state(), LinkState::up);
+  ASSERT_TRUE(link.send(kHeartbeat));  // the vehicle learns where to reply
+  ASSERT_TRUE(run_until(loop, [&] { return vehicle.datagrams.size() == 1; }));
+  constexpr std::size_t kLargestPayload = 65507;
+  const std::size_t frames = kLargestPayload / kHeartbeat.size();
+  std::vector<std::uint8_t> packed;
+  for (std::size_t i = 0; i < frames; ++i)
+    packed.insert(packed.end(), kHeartbeat.begin(), kHeartbeat.end());
+  vehicle.reply(packed);
+  ASSERT_TRUE(run_until(loop, [&] { return link.counters().bytes_received == packed.size(); }));
+  ASSERT_TRUE(run_until(loop, [&] { return received.msgids.size() == frames; }));
+  EXPECT_EQ(link.counters().parser.bad_crc, 0u);
+  EXPECT_EQ(link.counters().receive_errors, 0u);
+}
+
 TEST(UdpLink, BatchArrivesAsDatagramsInOrder) {
   asio::io_context loop;
   Vehicle vehicle(loop);
