@@ -58,9 +58,9 @@ class UdpLink final : public Link {
   asio::steady_timer retry_timer_;
   // Largest UDP payload: a datagram never holds more, and a smaller buffer would truncate a
   // datagram packed with several frames. On the heap and not zeroed: the OS makes a page of it
-  // resident only once a datagram reaches it, so a vehicle that sends one frame per datagram
-  // costs one page, not 64 KiB (peak RSS at 1000 vehicles, docs/performance.md), and the link
-  // object stays small.
+  // resident only once a datagram reaches it (fresh heap memory), so a vehicle that sends one
+  // frame per datagram costs about a page rather than 64 KiB (peak RSS at 1000 vehicles,
+  // docs/performance.md), and the link object stays small.
   static constexpr std::size_t kReceiveBufferSize = 65536;
   std::unique_ptr<std::uint8_t[]> receive_buffer_ =
       std::make_unique_for_overwrite<std::uint8_t[]>(kReceiveBufferSize);
