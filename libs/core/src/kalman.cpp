@@ -94,18 +94,20 @@ void PositionFilter::predict(double dt_s) {
   const double psd[2] = {params_.quiet_jerk_psd, params_.manoeuvre_jerk_psd};
   for (Axis& axis : axis_) {
     // IMM interaction: each model restarts from the mixture of both, weighted by the
-    // probability that the system was in model i given that it is now in model j.
+    // probability that the system was in model i given that it is now in model j:
+    //   x_j = w0 x0 + w1 x1,  P_j = w0 (P0 + d0 d0^T) + w1 (P1 + d1 d1^T),  di = xi - x_j.
+    // With w0 + w1 = 1, d0 = w1 (x0 - x1) and d1 = -w0 (x0 - x1), so the spread of the means is
+    // w0 w1 D D^T with D = x0 - x1: one outer product per axis instead of two per model.
+    const Eigen::Vector3d d = axis.model[0].x - axis.model[1].x;
+    const Eigen::Matrix3d spread = d * d.transpose();
     Model mixed[2];
     double c[2];
     for (int j = 0; j < 2; ++j) {
       c[j] = pi[0][j] * axis.mu[0] + pi[1][j] * axis.mu[1];
       const double w0 = pi[0][j] * axis.mu[0] / c[j];
-      const double w1 = pi[1][j] * axis.mu[1] / c[j];
+      const double w1 = 1.0 - w0;
       mixed[j].x = w0 * axis.model[0].x + w1 * axis.model[1].x;
-      const Eigen::Vector3d d0 = axis.model[0].x - mixed[j].x;
-      const Eigen::Vector3d d1 = axis.model[1].x - mixed[j].x;
-      mixed[j].p = w0 * (axis.model[0].p + d0 * d0.transpose()) +
-                   w1 * (axis.model[1].p + d1 * d1.transpose());
+      mixed[j].p = w0 * axis.model[0].p + w1 * axis.model[1].p + (w0 * w1) * spread;
     }
     for (int j = 0; j < 2; ++j) {
       const Eigen::Vector3d& x = mixed[j].x;
@@ -126,24 +128,36 @@ void PositionFilter::update(const Eigen::Vector3d& z_m, double r_m2) {
   constexpr double kMinProbability = 1e-4;
   for (int i = 0; i < 3; ++i) {
     Axis& axis = axis_[i];
-    double log_l[2];
+    double s[2];
+    double nu2_over_s[2];
     for (int j = 0; j < 2; ++j) {
       Model& m = axis.model[j];
-      const double s = m.p(0, 0) + r_m2;
+      s[j] = m.p(0, 0) + r_m2;
       const double nu = z_m[i] - m.x[0];
-      const Eigen::Vector3d k = m.p.col(0) / s;
+      const Eigen::Vector3d c = m.p.col(0);  // P h^T, h = [1 0 0]
+      const Eigen::Vector3d k = c / s[j];
       m.x += k * nu;
-      // Joseph form, P' = G P G^T + r k k^T with G = I - k h, h = [1 0 0]: G P = P - k P.row(0),
-      // (G P) G^T = G P - (G P).col(0) k^T (as joseph_update above).
-      const Eigen::Matrix3d gp = m.p - k * m.p.row(0);
-      m.p = gp - gp.col(0) * k.transpose() + r_m2 * k * k.transpose();
-      log_l[j] = -0.5 * (nu * nu / s + std::log(s));  // Gaussian likelihood, constant dropped
+      // Joseph form P' = G P G^T + r k k^T, G = I - k h, multiplied out with h P = c^T and
+      // h P h^T + r = s: P' = P - k c^T - c k^T + s k k^T. As the Joseph form it holds for any k
+      // (a rounded gain costs only second-order error); each element is computed once for both
+      // triangles, so P' is exactly symmetric.
+      for (int row = 0; row < 3; ++row) {
+        for (int col = row; col < 3; ++col) {
+          const double v =
+              m.p(row, col) - (k[row] * c[col] + c[row] * k[col]) + s[j] * k[row] * k[col];
+          m.p(row, col) = v;
+          m.p(col, row) = v;
+        }
+      }
+      nu2_over_s[j] = nu * nu / s[j];
     }
-    // Bayes on the model probabilities, in logs to avoid underflow for large innovations.
-    const double top = std::max(log_l[0], log_l[1]);
-    const double w0 = axis.mu[0] * std::exp(log_l[0] - top);
-    const double w1 = axis.mu[1] * std::exp(log_l[1] - top);
-    axis.mu[0] = std::clamp(w0 / (w0 + w1), kMinProbability, 1.0 - kMinProbability);
+    // Bayes on the model probabilities with the Gaussian likelihoods
+    // L_j = exp(-nu_j^2 / (2 s_j)) / sqrt(2 pi s_j), as the ratio L1 / L0 (one exp, no logs). A
+    // huge innovation sends the ratio to 0 or infinity, never NaN (mu0, mu1 > 0), and the clamp
+    // below then keeps both models alive.
+    const double ratio = std::sqrt(s[0] / s[1]) * std::exp(0.5 * (nu2_over_s[0] - nu2_over_s[1]));
+    const double mu0 = axis.mu[0] / (axis.mu[0] + axis.mu[1] * ratio);
+    axis.mu[0] = std::clamp(mu0, kMinProbability, 1.0 - kMinProbability);
     axis.mu[1] = 1.0 - axis.mu[0];
   }
 }
