@@ -153,8 +153,8 @@ void PositionFilter::update(const Eigen::Vector3d& z_m, double r_m2) {
     }
     // Bayes on the model probabilities with the Gaussian likelihoods
     // L_j = exp(-nu_j^2 / (2 s_j)) / sqrt(2 pi s_j), as the ratio L1 / L0 (one exp, no logs). A
-    // huge innovation sends the ratio to 0 or infinity, never NaN (mu0, mu1 > 0), and the clamp
-    // below then keeps both models alive.
+    // huge innovation sends the ratio to 0 or infinity (mu0, mu1 > 0 keep mu0 a number unless
+    // nu^2 itself overflows, as the logs did), and the clamp below keeps both models alive.
     const double ratio = std::sqrt(s[0] / s[1]) * std::exp(0.5 * (nu2_over_s[0] - nu2_over_s[1]));
     const double mu0 = axis.mu[0] / (axis.mu[0] + axis.mu[1] * ratio);
     axis.mu[0] = std::clamp(mu0, kMinProbability, 1.0 - kMinProbability);
