@@ -10,8 +10,12 @@
 // time (core::CaptureTimeMapper, as the bridge stamps it) and the header's system id set to each
 // vehicle's (as mocaplink sends it; e2e_receivers --sockets shared tells vehicles apart by it; the
 // checksum is left as it is). No tracking, no decimation, no encoding, no logic.
-// Usage: e2e_floor --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT and prints
-// "floor: N frames, M queue overflows, ..." on stderr)
+// With --listen, each socket also waits for datagrams from its vehicle on the loop, as the daemon's
+// UDP links do (an asio async_receive; what arrives is counted and dropped): the floor of a bridge
+// that hears its vehicles. The kernel then checks the socket's waiters (the loop's epoll) for every
+// datagram sent, which a socket nobody listens on skips (docs/performance.md, issue 15).
+// Usage: e2e_floor [--listen] --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT
+// and prints "floor: N frames, M queue overflows, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -24,11 +28,15 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <regex>
 #include <string>
 #include <vector>
 
+#include <asio/buffer.hpp>
 #include <asio/io_context.hpp>
+#include <asio/ip/udp.hpp>
 #include <asio/post.hpp>
 #include <asio/signal_set.hpp>
 
@@ -74,13 +82,15 @@ Config read_config(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3 || std::string(argv[1]) != "--config") {
-    std::fprintf(stderr, "usage: e2e_floor --config C.toml\n");
+  const bool listen = argc == 4 && std::string(argv[1]) == "--listen";
+  if (argc != 3 + (listen ? 1 : 0) || std::string(argv[argc - 2]) != "--config") {
+    std::fprintf(stderr, "usage: e2e_floor [--listen] --config C.toml\n");
     return 1;
   }
-  const Config config = read_config(argv[2]);
+  const Config config = read_config(argv[argc - 1]);
   if (config.source.empty() || config.vehicles.empty()) {
-    std::fprintf(stderr, "e2e_floor: no source or no udp://127.0.0.1 links in %s\n", argv[2]);
+    std::fprintf(stderr, "e2e_floor: no source or no udp://127.0.0.1 links in %s\n",
+                 argv[argc - 1]);
     return 1;
   }
   std::vector<int> sockets;
@@ -95,6 +105,29 @@ int main(int argc, char** argv) {
       return 1;
     }
     sockets.push_back(fd);
+  }
+  asio::io_context loop;
+  // --listen: the sockets in the loop's reactor, each with a receive pending (sends stay ::send).
+  struct Listener {
+    explicit Listener(asio::io_context& loop) : socket(loop) {}
+    asio::ip::udp::socket socket;
+    std::array<std::uint8_t, 512> buffer{};
+  };
+  std::vector<std::unique_ptr<Listener>> listeners;
+  std::uint64_t heard = 0;
+  std::function<void(Listener&)> receive = [&](Listener& l) {
+    l.socket.async_receive(asio::buffer(l.buffer), [&](const std::error_code& error, std::size_t) {
+      if (error == asio::error::operation_aborted) return;
+      if (!error) ++heard;
+      receive(l);
+    });
+  };
+  if (listen) {
+    for (const int fd : sockets) {
+      listeners.push_back(std::make_unique<Listener>(loop));
+      listeners.back()->socket.assign(asio::ip::udp::v4(), fd);  // it owns (closes) fd now
+      receive(*listeners.back());
+    }
   }
   // One ODOMETRY as mocaplink's px4 profile fills it (quality and estimator type set, so the
   // payload is not truncated more than the bridge's), encoded once.
@@ -113,7 +146,6 @@ int main(int argc, char** argv) {
     return 1;
   }
   auto source = std::move(std::get<0>(opened));
-  asio::io_context loop;
   auto guard = asio::make_work_guard(loop);
   asio::signal_set signals(loop, SIGINT, SIGTERM);
   signals.async_wait([&](const std::error_code&, int) {
@@ -167,9 +199,10 @@ int main(int argc, char** argv) {
       },
       [](mocaplink::sources::SourceState, const std::string&) {});
   loop.run();
-  std::fprintf(stderr,
-               "floor: %llu frames, %llu queue overflows, %zu-byte datagrams, %zu threads\n",
-               static_cast<unsigned long long>(frames),
-               static_cast<unsigned long long>(queue.overflows()), size, threads);
+  std::fprintf(
+      stderr, "floor: %llu frames, %llu queue overflows, %zu-byte datagrams, %zu threads%s\n",
+      static_cast<unsigned long long>(frames), static_cast<unsigned long long>(queue.overflows()),
+      size, threads,
+      listen ? (", listening (" + std::to_string(heard) + " datagrams heard)").c_str() : "");
   return 0;
 }

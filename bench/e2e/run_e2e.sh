@@ -14,6 +14,8 @@
 # ratios: the median of each repetition's ratio). POLL_MS sets the receivers' polling (default 2).
 # SOCKETS=shared makes 250 vehicles share each receiving socket (e2e_receivers --sockets shared),
 # so that the receivers cost the machine little even for 1000 vehicles.
+# FLOOR_LISTEN=1 runs the floor with --listen (its sockets also wait for the vehicles' datagrams, as
+# mocaplink's links do).
 set -euo pipefail
 bin=$1
 receivers=$2
@@ -36,6 +38,8 @@ if [ "${LOAD:-}" = compile ]; then
 fi
 prio=()
 [ -n "${NICE:-}" ] && prio=(nice -n "$NICE")
+floor_args=()
+[ -n "${FLOOR_LISTEN:-}" ] && floor_args=(--listen)
 
 # measure N BIN ARGS...: runs BIN ARGS... against N fresh receivers for $seconds; prints
 # "frames received p50_us p99_us cpu_pct rss_mib first_p50_us last_p50_us".
@@ -79,7 +83,7 @@ echo "|---:|---:|---:|---|---|---|---|---|---:|---:|"
 for n in "${counts[@]}"; do
   rows=()
   for ((rep = 0; rep < ${REPEAT:-1}; rep++)); do
-    read -r ff fr fp50 fp99 fcpu _ ffirst flast < <(measure "$n" "$floor")
+    read -r ff fr fp50 fp99 fcpu _ ffirst flast < <(measure "$n" "$floor" "${floor_args[@]}")
     read -r mf mr mp50 mp99 cpu rss mfirst mlast < <(measure "$n" "$bin" run)
     rows+=("$ff $fr $fp50 $fp99 $fcpu $mf $mr $mp50 $mp99 $cpu $rss $ffirst $flast $mfirst $mlast")
   done
