@@ -1,0 +1,53 @@
+// LateFrames: whether a mocap frame is still worth turning into poses when the event loop gets to
+// it (issue 15). A frame waits in the hand-over queue between its source's thread and the loop,
+// normally for microseconds. When the machine cannot keep up (more vehicles than its cores can
+// send to, or a stall), the wait grows to the whole queue (256 frames, about 1 s at 240 Hz) and
+// every pose then sent is that old. Neither autopilot can be told to expect that: EKF2_EV_DELAY
+// is at most 300 ms and VISO_DELAY_MS at most 250 ms, and PX4 without timesync takes a pose as of
+// its arrival (protocols/autopilots.md §4). So a frame that waited longer than kMaxFrameWait is
+// skipped and counted, and the loop goes on with the fresher frames behind it: under overload the
+// poses that do leave stay young instead of all being a second old.
+// Pure; time is passed in; one owner (the event loop).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+
+#include "mocaplink/core/time.hpp"
+
+namespace mocaplink::core {
+
+/// The longest a frame may wait between its arrival and the loop and still be sent.
+inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
+/// Skipped frames are warned about at most this often (the first at once).
+inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
+
+/// Frames skipped since the previous warning.
+struct LateWarning {
+  std::uint64_t skipped = 0;  ///< how many
+  Duration longest_wait{};    ///< the longest any of them had waited when it was skipped
+};
+
+class LateFrames {
+ public:
+  explicit LateFrames(Duration max_wait = kMaxFrameWait) noexcept : max_wait_(max_wait) {}
+
+  /// True when a frame received at `received` has waited longer than max_wait by `now`: skip it
+  /// (counted). Exactly max_wait is still in time.
+  [[nodiscard]] bool late(HostTime received, HostTime now) noexcept;
+  /// Frames skipped since construction.
+  [[nodiscard]] std::uint64_t skipped() const noexcept { return skipped_; }
+  /// What to warn about at `now`, if anything was skipped since the previous warning and that
+  /// warning is kLateWarningPeriod old (the first skip is warned about at once); then starts
+  /// counting afresh.
+  [[nodiscard]] std::optional<LateWarning> warning(HostTime now) noexcept;
+
+ private:
+  Duration max_wait_;
+  std::uint64_t skipped_ = 0;
+  LateWarning pending_;             // since the previous warning
+  std::optional<HostTime> warned_;  // when the previous warning was given
+};
+
+}  // namespace mocaplink::core
