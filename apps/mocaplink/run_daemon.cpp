@@ -17,6 +17,7 @@
 #include <asio/steady_timer.hpp>
 
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/late_frames.hpp"
 #include "mocaplink/io/bounded_queue.hpp"
 #include "mocaplink/io/clock.hpp"
 #include "mocaplink/io/fork_join.hpp"
@@ -148,6 +149,7 @@ class Daemon {
   config::Config config_;
   std::string source_error_;            // the source's last problem, "" when connected (dashboard)
   core::LatencyWindow bridge_latency_;  // frame received → its last datagram sent (dashboard)
+  core::LateFrames late_frames_;        // frames that waited too long to be sent (drain)
   core::BridgeOutput frame_output_;     // per frame, kept for its capacity
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
@@ -374,11 +376,21 @@ void Daemon::drain() {
   batch_.clear();
   queue_.drain(batch_);
   for (auto& item : batch_) {
-    if (recorder_) recorder_->on_frame(item.frame);
+    if (recorder_) recorder_->on_frame(item.frame);  // the recording keeps every frame
+    // Too old to send (core/late_frames.hpp): the loop is behind; go on with fresher frames.
+    if (late_frames_.late(item.received, io::host_now())) continue;
     on_frame(item.frame, item.received);
     bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
+  if (const auto late = late_frames_.warning(io::host_now())) {
+    spdlog::warn(
+        "the bridge is behind the source: {} frame{} skipped, having waited up to {:.0f} ms "
+        "(more than {} ms is too old to send; is the machine overloaded?)",
+        late->skipped, late->skipped == 1 ? "" : "s",
+        std::chrono::duration<double, std::milli>(late->longest_wait).count(),
+        std::chrono::duration_cast<std::chrono::milliseconds>(core::kMaxFrameWait).count());
+  }
 }
 
 /// Calls f(run) for each run of consecutive messages to one vehicle (the core emits a vehicle's
@@ -513,7 +525,8 @@ void Daemon::stop(const std::string& reason) {
   summary_timer_.cancel();
   // 2. Persist, report, close files. UDP sends were synchronous, so they have left already.
   save_signing();
-  summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(), true);
+  summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(),
+               late_frames_.skipped(), true);
   if (recorder_) {
     recorder_->close();
     spdlog::info("recording: {} frames in {}{}", recorder_->frames_written(),
@@ -568,7 +581,8 @@ int Daemon::run() {
   });
   every(signing_timer_, kSigningSavePeriod, [this] { save_signing(); });
   every(summary_timer_, settings_.summary_period, [this] {
-    summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(), false);
+    summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(),
+                 late_frames_.skipped(), false);
   });
   dispatch(bridge_.on_tick(io::host_now()));  // first heartbeats at once
   loop_.run();

@@ -64,7 +64,7 @@ void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {
 }
 
 void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
-                  std::uint64_t queue_overflows, bool final) {
+                  std::uint64_t queue_overflows, std::uint64_t late_frames, bool final) {
   const double dt = previous_time_ ? core::to_seconds(snapshot.time - *previous_time_)
                                    : std::chrono::duration<double>(period_).count();
   previous_time_ = snapshot.time;
@@ -74,10 +74,13 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
     return snapshot.time - entry.second.last > std::chrono::minutes(1);
   });
   const auto& st = snapshot.station;
-  spdlog::info("{}source {}: {}, {} frames ({:.1f} Hz), {} dropped, {} queue overflows",
-               final ? "final: " : "", config_.mocap.source.text,
-               st.connected ? "connected" : "not connected", st.frames, st.frame_rate_hz,
-               st.drops_counted ? std::to_string(st.dropped) : std::string("n/a"), queue_overflows);
+  spdlog::info(
+      "{}source {}: {}, {} frames ({:.1f} Hz), {} dropped, {} queue overflows, {} late frames "
+      "skipped",
+      final ? "final: " : "", config_.mocap.source.text,
+      st.connected ? "connected" : "not connected", st.frames, st.frame_rate_hz,
+      st.drops_counted ? std::to_string(st.dropped) : std::string("n/a"), queue_overflows,
+      late_frames);
   const bool detailed = snapshot.vehicles.size() <= kDetailedVehicles;
   std::map<std::string, Previous> next;  // only live vehicles: removed ones are forgotten
   double min_hz = 0.0;

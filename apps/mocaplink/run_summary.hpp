@@ -33,9 +33,10 @@ class Summary {
   /// Logs a core event, at most one per (kind, subject) per second; the rest are counted and
   /// mentioned with the next one logged.
   void on_event(const core::BridgeEvent& event, core::HostTime now);
-  /// The periodic (or, with `final`, the last) summary. `links` by vehicle slot.
+  /// The periodic (or, with `final`, the last) summary. `links` by vehicle slot; the queue's
+  /// overflows and the frames skipped as too old (core::LateFrames) since the start.
   void log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
-           std::uint64_t queue_overflows, bool final);
+           std::uint64_t queue_overflows, std::uint64_t late_frames, bool final);
 
  private:
   struct Limit {

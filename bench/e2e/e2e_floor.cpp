@@ -9,13 +9,14 @@
 // start (the same size as mocaplink's), with only time_usec changed to the frame's host capture
 // time (core::CaptureTimeMapper, as the bridge stamps it) and the header's system id set to each
 // vehicle's (as mocaplink sends it; e2e_receivers --sockets shared tells vehicles apart by it; the
-// checksum is left as it is). No tracking, no decimation, no encoding, no logic.
+// checksum is left as it is). No tracking, no decimation, no encoding, no logic. A frame that
+// waited too long for the loop is skipped as the daemon skips it (core::LateFrames).
 // With --listen, each socket also waits for datagrams from its vehicle on the loop, as the daemon's
 // UDP links do (an asio async_receive; what arrives is counted and dropped): the floor of a bridge
 // that hears its vehicles. The kernel then checks the socket's waiters (the loop's epoll) for every
 // datagram sent, which a socket nobody listens on skips (docs/performance.md, issue 15).
 // Usage: e2e_floor [--listen] --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT
-// and prints "floor: N frames, M queue overflows, ..." on stderr)
+// and prints "floor: N frames, M queue overflows, K late frames skipped, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -40,8 +41,10 @@
 #include <asio/post.hpp>
 #include <asio/signal_set.hpp>
 
+#include "mocaplink/core/late_frames.hpp"
 #include "mocaplink/core/sender_clock.hpp"
 #include "mocaplink/io/bounded_queue.hpp"
+#include "mocaplink/io/clock.hpp"
 #include "mocaplink/io/fork_join.hpp"
 #include "mocaplink/io/send_threads.hpp"
 #include "mocaplink/mavlink/frame.hpp"
@@ -168,10 +171,12 @@ int main(int argc, char** argv) {
   std::vector<std::array<std::uint8_t, mocaplink::mavlink::kMaxFrameSize>> datagrams(threads,
                                                                                      datagram);
   std::uint64_t frames = 0;
+  mocaplink::core::LateFrames late;  // frames that waited too long are skipped, as in the daemon
   const auto drain = [&] {
     batch.clear();
     queue.drain(batch);
     for (const Queued& f : batch) {
+      if (late.late(f.received, mocaplink::io::host_now())) continue;  // as the daemon does
       ++frames;
       const std::uint64_t time_usec =
           mocaplink::core::host_time_usec(mapper.on_frame(f.capture, f.received, f.latency));
@@ -200,9 +205,11 @@ int main(int argc, char** argv) {
       [](mocaplink::sources::SourceState, const std::string&) {});
   loop.run();
   std::fprintf(
-      stderr, "floor: %llu frames, %llu queue overflows, %zu-byte datagrams, %zu threads%s\n",
+      stderr,
+      "floor: %llu frames, %llu queue overflows, %llu late frames skipped, %zu-byte "
+      "datagrams, %zu threads%s\n",
       static_cast<unsigned long long>(frames), static_cast<unsigned long long>(queue.overflows()),
-      size, threads,
+      static_cast<unsigned long long>(late.skipped()), size, threads,
       listen ? (", listening (" + std::to_string(heard) + " datagrams heard)").c_str() : "");
   return 0;
 }

@@ -63,19 +63,21 @@ measure() {
     exit 1
   fi
   wait "$rpid"
-  local user sys wall rss_kb frames overflows
+  local user sys wall rss_kb frames overflows late
   read -r user sys wall rss_kb < "$work/time.out"
   frames=$(sed -n -e 's/.*final: source [^ ]*: [a-z ]*, \([0-9]*\) frames.*/\1/p' \
     -e 's/^floor: \([0-9]*\) frames.*/\1/p' "$work/run.err")
   overflows=$(sed -n -e 's/.*final: source .* \([0-9]*\) queue overflows.*/\1/p' \
     -e 's/^floor: [0-9]* frames, \([0-9]*\) queue overflows.*/\1/p' "$work/run.err")
+  late=$(sed -n -e 's/.*final: source .* \([0-9]*\) late frames skipped.*/\1/p' \
+    -e 's/^floor: .* \([0-9]*\) late frames skipped.*/\1/p' "$work/run.err")
   node -e '
     const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8").split("\n")[1]);
     const [frames, user, sys, wall, rss] = process.argv.slice(2).map(Number);
     console.log(frames, r.odometry, r.latency_us.p50, r.latency_us.p99,
       (100 * (user + sys) / wall).toFixed(1), (rss / 1024).toFixed(1),
       r.first_vehicle_p50_us, r.last_vehicle_p50_us);
-  ' "$work/recv.out" "$((frames + ${overflows:-0}))" "$user" "$sys" "$wall" "$rss_kb"
+  ' "$work/recv.out" "$((frames + ${overflows:-0} + ${late:-0}))" "$user" "$sys" "$wall" "$rss_kb"
 }
 
 echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS |"
