@@ -1,0 +1,93 @@
+// A bridge that falls behind its source skips the frames that waited too long, says so, and still
+// records every frame (issue 15; core/late_frames.hpp). The event loop is made to stall for real:
+// the recording's mocap.csv is a FIFO that this test does not read at first, so once the pipe is
+// full the loop blocks in its write while the source thread keeps queueing frames. Then the test
+// reads the FIFO, the loop goes on, and the frames that waited more than 250 ms must be skipped:
+// the warning, the count in the final summary, and every frame handed over either sent through
+// the core (counted by the Station) or skipped — and recorded either way.
+'use strict';
+
+const childProcess = require('node:child_process');
+const fs = require('node:fs');
+const path = require('node:path');
+const h = require('./harness');
+
+const { assert, sleep } = h;
+
+async function main() {
+  const dir = h.tempDir('late');
+  const record = path.join(dir, 'rec');
+  fs.mkdirSync(record);
+  const fifo = path.join(record, 'mocap.csv');
+  childProcess.execFileSync('mkfifo', [fifo]);
+  // Open for reading first (non-blocking), so that the daemon's open for writing does not wait.
+  const reader = fs.openSync(fifo, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
+
+  const vehicle = await new h.UdpVehicle().bind();
+  const config = h.writeConfig(path.join(dir, 'late.toml'), 'sim://?bodies=3&rate_hz=240', [
+    { name: 'quad', body: 'Body1', link: `udp://127.0.0.1:${vehicle.port}`, profile: 'px4',
+      system_id: 1, rate_hz: 240 },
+  ]);
+  const run = h.mocaplink(['run', '--config', config, '--record', record],
+    { env: { MOCAPLINK_STATE_DIR: path.join(dir, 'state') } });
+  await h.waitFor(() => vehicle.packets.length > 10, 10000, `traffic\n${run.stderr}`);
+
+  // Nobody reads: the pipe fills (64 KiB, a few hundred frames) and the loop blocks in a write.
+  // Wait until no pose has come for a second, i.e. the loop has been stalled that long.
+  let seen = -1;
+  let quietSince = Date.now();
+  await h.waitFor(() => {
+    if (vehicle.packets.length !== seen) {
+      seen = vehicle.packets.length;
+      quietSince = Date.now();
+    }
+    return Date.now() - quietSince > 1000;
+  }, 20000, `the loop to stall on the full pipe\n${run.stderr}`);
+
+  // Read from now on, and keep reading until the daemon has closed its end.
+  let csv = '';
+  let closed = false;
+  const buffer = Buffer.alloc(1 << 16);
+  const drain = async () => {
+    while (!closed) {
+      let n = 0;
+      try {
+        n = fs.readSync(reader, buffer, 0, buffer.length, null);
+      } catch (error) {
+        if (error.code !== 'EAGAIN') throw error;
+        await sleep(5);
+        continue;
+      }
+      if (n === 0) {
+        if (run.child.exitCode !== null || run.child.signalCode !== null) closed = true;
+        else await sleep(5);
+        continue;
+      }
+      csv += buffer.toString('latin1', 0, n);
+    }
+  };
+  const reading = drain();
+  await h.waitForLog(run, /warning the bridge is behind the source: \d+ frames? skipped/);
+  const posesAfter = vehicle.packets.length;
+  await h.waitFor(() => vehicle.packets.length > posesAfter + 50, 10000,
+    `poses again after the stall\n${run.stderr}`);
+  await h.stop(run);
+  await reading;
+  fs.closeSync(reader);
+  vehicle.close();
+
+  const final = run.stderr.match(
+    /final: source \S+: connected, (\d+) frames .*, (\d+) queue overflows, (\d+) late frames skipped/);
+  assert.ok(final, `no final source line\n${run.stderr}`);
+  const [tracked, overflows, late] = final.slice(1).map(Number);
+  assert.ok(late > 0, `nothing skipped after a stall of over a second\n${run.stderr}`);
+  const recording = run.stderr.match(/recording: (\d+) frames in/);
+  assert.ok(recording, run.stderr);
+  // Every frame the loop took from the queue was recorded; it was then either tracked or skipped.
+  assert.equal(Number(recording[1]), tracked + late, run.stderr);
+  const frames = new Set(csv.split('\n').slice(2).filter((l) => l !== '').map((l) => l.split(',')[1]));
+  assert.equal(frames.size, tracked + late, 'frames in mocap.csv');
+  console.log(`ok: ${late} late frames skipped, ${overflows} overflows, ${tracked} tracked`);
+}
+
+main().catch(h.fail);
