@@ -4,7 +4,7 @@
 
 namespace mocaplink::core {
 
-bool LateFrames::late(HostTime received, HostTime now) noexcept {
+bool LateFrames::skip_if_late(HostTime received, HostTime now) noexcept {
   const Duration wait = now - received;
   if (wait <= max_wait_) return false;
   ++skipped_;

@@ -31,11 +31,12 @@ struct LateWarning {
 
 class LateFrames {
  public:
+  /// `max_wait` ≥ 0 (0: every frame that waited at all is late).
   explicit LateFrames(Duration max_wait = kMaxFrameWait) noexcept : max_wait_(max_wait) {}
 
-  /// True when a frame received at `received` has waited longer than max_wait by `now`: skip it
-  /// (counted). Exactly max_wait is still in time.
-  [[nodiscard]] bool late(HostTime received, HostTime now) noexcept;
+  /// True when a frame received at `received` has waited longer than max_wait by `now`: the
+  /// caller skips it, and it is counted. Exactly max_wait is still in time.
+  [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept;
   /// Frames skipped since construction.
   [[nodiscard]] std::uint64_t skipped() const noexcept { return skipped_; }
   /// What to warn about at `now`, if anything was skipped since the previous warning and that
