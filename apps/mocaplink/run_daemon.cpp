@@ -108,6 +108,10 @@ class Daemon {
   void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
+  /// Logs the frames skipped as too late since the last such warning, when one is due
+  /// (core::LateFrames::warning): from drain(), and from the tick for frames skipped just before
+  /// the source went quiet.
+  void warn_late_frames(core::HostTime now);
   void on_frame(const core::MocapFrame& frame, core::HostTime received);
   void dispatch(const core::BridgeOutput& out);
   /// Sends messages[first, end) (one vehicle's run) to that vehicle's link, in batches.
@@ -378,19 +382,23 @@ void Daemon::drain() {
   for (auto& item : batch_) {
     if (recorder_) recorder_->on_frame(item.frame);  // the recording keeps every frame
     // Too old to send (core/late_frames.hpp): the loop is behind; go on with fresher frames.
-    if (late_frames_.late(item.received, io::host_now())) continue;
+    if (late_frames_.skip_if_late(item.received, io::host_now())) continue;
     on_frame(item.frame, item.received);
     bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
-  if (const auto late = late_frames_.warning(io::host_now())) {
-    spdlog::warn(
-        "the bridge is behind the source: {} frame{} skipped, having waited up to {:.0f} ms "
-        "(more than {} ms is too old to send; is the machine overloaded?)",
-        late->skipped, late->skipped == 1 ? "" : "s",
-        std::chrono::duration<double, std::milli>(late->longest_wait).count(),
-        std::chrono::duration_cast<std::chrono::milliseconds>(core::kMaxFrameWait).count());
-  }
+  warn_late_frames(io::host_now());
+}
+
+void Daemon::warn_late_frames(core::HostTime now) {
+  const auto late = late_frames_.warning(now);
+  if (!late) return;
+  spdlog::warn(
+      "the bridge is behind the source: {} frame{} skipped, having waited up to {:.0f} ms "
+      "(more than {} ms is too old to send; is the machine overloaded?)",
+      late->skipped, late->skipped == 1 ? "" : "s",
+      std::chrono::duration<double, std::milli>(late->longest_wait).count(),
+      std::chrono::duration_cast<std::chrono::milliseconds>(core::kMaxFrameWait).count());
 }
 
 /// Calls f(run) for each run of consecutive messages to one vehicle (the core emits a vehicle's
@@ -574,6 +582,7 @@ int Daemon::run() {
     const core::HostTime now = io::host_now();
     dispatch(bridge_.on_tick(now));
     destroy_retired(now);
+    warn_late_frames(now);
   });
   every(flush_timer_, kFlushPeriod, [this] {
     if (recorder_) recorder_->flush();
