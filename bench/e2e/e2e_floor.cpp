@@ -14,9 +14,12 @@
 // With --listen, each socket also waits for datagrams from its vehicle on the loop, as the daemon's
 // UDP links do (an asio async_receive; what arrives is counted and dropped): the floor of a bridge
 // that hears its vehicles. The kernel then checks the socket's waiters (the loop's epoll) for every
-// datagram sent, which a socket nobody listens on skips (docs/performance.md, issue 15).
+// datagram sent, which a socket nobody listens on skips (docs/performance.md, issue 15). asio also
+// makes the sockets non-blocking, as the daemon's are: a send into a full buffer fails instead of
+// waiting (counted, as every failed send is).
 // Usage: e2e_floor [--listen] --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT
-// and prints "floor: N frames, M queue overflows, K late frames skipped, ..." on stderr)
+// and prints "floor: N frames, M queue overflows, K late frames skipped, F sends failed, ..." on
+// stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -110,7 +113,8 @@ int main(int argc, char** argv) {
     sockets.push_back(fd);
   }
   asio::io_context loop;
-  // --listen: the sockets in the loop's reactor, each with a receive pending (sends stay ::send).
+  // --listen: the sockets in the loop's reactor, each with a receive pending (sends stay ::send,
+  // now non-blocking).
   struct Listener {
     explicit Listener(asio::io_context& loop) : socket(loop) {}
     asio::ip::udp::socket socket;
@@ -171,12 +175,13 @@ int main(int argc, char** argv) {
   std::vector<std::array<std::uint8_t, mocaplink::mavlink::kMaxFrameSize>> datagrams(threads,
                                                                                      datagram);
   std::uint64_t frames = 0;
+  std::atomic<std::uint64_t> failed_sends{0};  // refused by the OS (a full buffer, an ICMP error)
   mocaplink::core::LateFrames late;  // frames that waited too long are skipped, as in the daemon
   const auto drain = [&] {
     batch.clear();
     queue.drain(batch);
     for (const Queued& f : batch) {
-      if (late.late(f.received, mocaplink::io::host_now())) continue;  // as the daemon does
+      if (late.skip_if_late(f.received, mocaplink::io::host_now())) continue;  // as the daemon does
       ++frames;
       const std::uint64_t time_usec =
           mocaplink::core::host_time_usec(mapper.on_frame(f.capture, f.received, f.latency));
@@ -190,7 +195,9 @@ int main(int argc, char** argv) {
         for (std::size_t first = part * kChunk; first < sockets.size(); first += threads * kChunk) {
           for (std::size_t v = first; v < std::min(first + kChunk, sockets.size()); ++v) {
             bytes[5] = config.vehicles[v].system_id;
-            (void)::send(sockets[v], bytes.data(), size, 0);
+            if (::send(sockets[v], bytes.data(), size, 0) < 0) {
+              failed_sends.fetch_add(1, std::memory_order_relaxed);
+            }
           }
         }
       });
@@ -206,10 +213,11 @@ int main(int argc, char** argv) {
   loop.run();
   std::fprintf(
       stderr,
-      "floor: %llu frames, %llu queue overflows, %llu late frames skipped, %zu-byte "
-      "datagrams, %zu threads%s\n",
+      "floor: %llu frames, %llu queue overflows, %llu late frames skipped, %llu sends failed, "
+      "%zu-byte datagrams, %zu threads%s\n",
       static_cast<unsigned long long>(frames), static_cast<unsigned long long>(queue.overflows()),
-      static_cast<unsigned long long>(late.skipped()), size, threads,
+      static_cast<unsigned long long>(late.skipped()),
+      static_cast<unsigned long long>(failed_sends.load()), size, threads,
       listen ? (", listening (" + std::to_string(heard) + " datagrams heard)").c_str() : "");
   return 0;
 }

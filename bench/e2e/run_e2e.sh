@@ -39,7 +39,7 @@ fi
 prio=()
 [ -n "${NICE:-}" ] && prio=(nice -n "$NICE")
 floor_args=()
-[ -n "${FLOOR_LISTEN:-}" ] && floor_args=(--listen)
+[ "${FLOOR_LISTEN:-}" = 1 ] && floor_args=(--listen)
 
 # measure N BIN ARGS...: runs BIN ARGS... against N fresh receivers for $seconds; prints
 # "frames received p50_us p99_us cpu_pct rss_mib first_p50_us last_p50_us".
