@@ -46,6 +46,9 @@ function renderStation(station) {
   $('#st-bridge-latency').textContent = bridge === null ? '–' : `${num(bridge.last, 2, ' ms')} (p99 ${num(bridge.p99, 2, ' ms')})`;
   $('#st-frames').textContent = int(station.frames);
   $('#st-dropped').textContent = int(station.dropped);
+  const late = $('#st-late');
+  late.textContent = int(station.late_frames_skipped);
+  late.className = station.late_frames_skipped > 0 ? 'bad' : '';
 
   const tbody = $('#bodies tbody');
   const rows = station.bodies.map((b) => {

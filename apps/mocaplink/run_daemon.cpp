@@ -560,7 +560,7 @@ int Daemon::run() {
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
       loop_,
-      DashboardAccess{bridge_, config_, vehicles_, source_error_, bridge_latency_,
+      DashboardAccess{bridge_, config_, vehicles_, source_error_, bridge_latency_, late_frames_,
                       [this](const std::vector<config::VehicleKey>& keys, bool paused) {
                         return add_vehicle(keys, paused);
                       },

@@ -73,6 +73,7 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     const core::BridgeSnapshot snapshot = access_.bridge.snapshot(io::host_now());
     context_.source_error = access_.source_error;
     context_.bridge_latency = access_.bridge_latency.summary();
+    context_.late_frames_skipped = access_.late_frames.skipped();
     context_.links.clear();
     context_.links_down.clear();
     for (const auto& v : snapshot.vehicles) {

@@ -13,6 +13,7 @@
 
 #include "mocaplink/config/load.hpp"
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/late_frames.hpp"
 #include "mocaplink/core/latency_window.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 #include "run_links.hpp"
@@ -30,6 +31,7 @@ struct DashboardAccess {
   const std::vector<VehicleLink>& vehicles;   ///< by vehicle slot, as in the Bridge
   const std::string& source_error;            ///< the source's last problem, "" when connected
   const core::LatencyWindow& bridge_latency;  ///< frame received → its last datagram sent
+  const core::LateFrames& late_frames;        ///< frames skipped as too late (core/late_frames)
   /// Adds a vehicle given as the keys of a [[vehicle]] table and starts it (paused if asked).
   std::function<std::optional<web::ApiError>(const std::vector<config::VehicleKey>& keys,
                                              bool paused)>

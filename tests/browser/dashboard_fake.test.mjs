@@ -41,6 +41,8 @@ describe('dashboard against the fake backend', () => {
     assert.equal(await page.locator('#st-source').textContent(), 'sim://?bodies=3');
     assert.equal(await page.locator('#st-state').textContent(), 'connected');
     assert.equal(await page.locator('#st-dropped').textContent(), '3');
+    assert.equal(await page.locator('#st-late').textContent(), '5');
+    assert.equal(await page.locator('#st-late').getAttribute('class'), 'bad');
     assert.equal(await page.locator('#st-bridge-latency').textContent(), '0.12 ms (p99 0.45 ms)');
   });
 

@@ -157,6 +157,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     status.station.bridge_latency_ms =
         BridgeLatencyView{ms(l.last), ms(l.p50), ms(l.p99), ms(l.max)};
   }
+  status.station.late_frames_skipped = context.late_frames_skipped;
 
   std::map<std::string, RateWindow, std::less<>> next_rates;
   for (std::size_t i = 0; i < snapshot.vehicles.size(); ++i) {

@@ -72,7 +72,8 @@ void to_json(nlohmann::json& j, const StationView& station) {
                      {"dropped", station.drops_counted ? nlohmann::json(station.dropped)
                                                        : nlohmann::json(nullptr)},
                      {"bodies", station.bodies},
-                     {"bridge_latency_ms", optional_json(station.bridge_latency_ms)}};
+                     {"bridge_latency_ms", optional_json(station.bridge_latency_ms)},
+                     {"late_frames_skipped", station.late_frames_skipped}};
 }
 
 void to_json(nlohmann::json& j, const HeartbeatView& heartbeat) {

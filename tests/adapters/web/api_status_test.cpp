@@ -68,6 +68,7 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_EQ(station["dropped"], 3);
   EXPECT_EQ(station["bridge_latency_ms"],
             (json{{"last", 0.12}, {"p50", 0.1}, {"p99", 0.45}, {"max", 0.9}}));
+  EXPECT_EQ(station["late_frames_skipped"], 5);
   ASSERT_EQ(station["bodies"].size(), 3U);
   const json& body1 = station["bodies"][0];
   EXPECT_EQ(body1["name"], "Body1");

@@ -59,6 +59,14 @@ TEST(BridgeViews, BridgeLatencyInMilliseconds) {
   EXPECT_DOUBLE_EQ(latency->max, 0.9);
 }
 
+TEST(BridgeViews, LateFramesSkippedFromTheDaemon) {
+  BridgeStatusBuilder builder(host_time_from_ns(0));
+  BridgeStatusContext context{"sim://", "", {"udp://127.0.0.1:14550"}, {}};
+  EXPECT_EQ(builder.build(snapshot_at(2.0, 100), context).station.late_frames_skipped, 0U);
+  context.late_frames_skipped = 42;
+  EXPECT_EQ(builder.build(snapshot_at(2.1, 100), context).station.late_frames_skipped, 42U);
+}
+
 TEST(BridgeViews, MapsEveryField) {
   BridgeStatusBuilder builder(host_time_from_ns(0));
   const BridgeStatusContext context{"sim://", "", {"udp://127.0.0.1:14550"}, {}};

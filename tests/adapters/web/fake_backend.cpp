@@ -136,6 +136,7 @@ StatusView FakeBackend::status() {
   s.station.frames = static_cast<std::uint64_t>(t_s_ * 200.0);
   s.station.dropped = 3;
   s.station.bridge_latency_ms = BridgeLatencyView{0.12, 0.1, 0.45, 0.9};
+  s.station.late_frames_skipped = 5;
   const char* names[] = {"Body1", "Body2", "Body3"};
   for (std::size_t i = 0; i < 3; ++i) {
     BodyView b;

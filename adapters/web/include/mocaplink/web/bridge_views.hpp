@@ -23,6 +23,8 @@ struct BridgeStatusContext {
   std::vector<bool> links_down;    ///< per vehicle: the link cannot send (may be shorter)
   /// The bridge's own latency over the latest frames (the daemon measures it), if any.
   std::optional<core::LatencySummary> bridge_latency{};
+  /// Frames the daemon skipped because they reached its loop too late (core::LateFrames).
+  std::uint64_t late_frames_skipped = 0;
 };
 
 /// "quadrotor", "ground_rover", ... (MAV_TYPE), or the number when not in our table.

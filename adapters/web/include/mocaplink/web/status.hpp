@@ -63,6 +63,9 @@ struct StationView {
   /// The bridge's own latency (a frame received → the last datagram it caused sent), over the
   /// latest frames (core::LatencyWindow); null until a frame was bridged.
   std::optional<BridgeLatencyView> bridge_latency_ms{};
+  /// Frames the bridge reached more than 250 ms after they arrived, skipped rather than sent
+  /// (core::LateFrames; an overloaded machine), cumulative.
+  std::uint64_t late_frames_skipped = 0;
 };
 
 /// How the bridge hears from a vehicle over its link, as the dashboard shows it (docs/api.md
