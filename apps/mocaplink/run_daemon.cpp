@@ -109,8 +109,8 @@ class Daemon {
   void start_source();
   void drain();
   /// Logs the frames skipped as too late since the last such warning, when one is due
-  /// (core::LateFrames::warning): from drain(), and from the tick for frames skipped just before
-  /// the source went quiet.
+  /// (core::LateFrames::warning). Called from the tick: within kTickPeriod of the first skip, and
+  /// nothing added to the per-frame path.
   void warn_late_frames(core::HostTime now);
   void on_frame(const core::MocapFrame& frame, core::HostTime received);
   void dispatch(const core::BridgeOutput& out);
@@ -387,7 +387,6 @@ void Daemon::drain() {
     bridge_latency_.add(io::host_now() - item.received);
   }
   summary_.on_frames(batch_.size());
-  warn_late_frames(io::host_now());
 }
 
 void Daemon::warn_late_frames(core::HostTime now) {
