@@ -17,9 +17,12 @@
 // datagram sent, which a socket nobody listens on skips (docs/performance.md, issue 15). asio also
 // makes the sockets non-blocking, as the daemon's are: a send into a full buffer fails instead of
 // waiting (counted, as every failed send is).
-// Usage: e2e_floor [--listen] --config C.toml   (written by e2e_receivers; stops on SIGTERM/SIGINT
-// and prints "floor: N frames, M queue overflows, K late frames skipped, F sends failed, ..." on
-// stderr)
+// With --shared-socket, the vehicles share one unconnected socket per send thread, and each thread
+// sends its vehicles' datagrams with one sendmmsg (each to its vehicle's address): batched sends
+// across vehicles, the other way a bridge could use sendmmsg (docs/performance.md).
+// Usage: e2e_floor [--listen] [--shared-socket] --config C.toml   (written by e2e_receivers;
+// stops on SIGTERM/SIGINT and prints "floor: N frames, M queue overflows, K late frames skipped,
+// F sends failed, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -88,9 +91,15 @@ Config read_config(const std::string& path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool listen = argc == 4 && std::string(argv[1]) == "--listen";
-  if (argc != 3 + (listen ? 1 : 0) || std::string(argv[argc - 2]) != "--config") {
-    std::fprintf(stderr, "usage: e2e_floor [--listen] --config C.toml\n");
+  bool listen = false;
+  bool shared = false;
+  for (int i = 1; i + 2 < argc; ++i) {
+    listen = listen || std::string(argv[i]) == "--listen";
+    shared = shared || std::string(argv[i]) == "--shared-socket";
+  }
+  if (argc != 3 + (listen ? 1 : 0) + (shared ? 1 : 0) ||
+      std::string(argv[argc - 2]) != "--config") {
+    std::fprintf(stderr, "usage: e2e_floor [--listen] [--shared-socket] --config C.toml\n");
     return 1;
   }
   const Config config = read_config(argv[argc - 1]);
@@ -100,18 +109,22 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::vector<int> sockets;
+  std::vector<sockaddr_in> addresses;
   for (const Vehicle& vehicle : config.vehicles) {
-    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_port = htons(vehicle.port);
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addresses.push_back(addr);
+    if (shared) continue;
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
     if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
       std::perror("e2e_floor: socket");
       return 1;
     }
     sockets.push_back(fd);
   }
+  const std::size_t vehicle_count = config.vehicles.size();
   asio::io_context loop;
   // --listen: the sockets in the loop's reactor, each with a receive pending (sends stay ::send,
   // now non-blocking).
@@ -171,9 +184,37 @@ int main(int argc, char** argv) {
   std::string warning;
   mocaplink::io::ForkJoin pool(mocaplink::io::max_send_threads(&warning));
   if (!warning.empty()) std::fprintf(stderr, "e2e_floor: %s\n", warning.c_str());
-  const std::size_t threads = mocaplink::io::send_threads_for(sockets.size(), pool.max_parts());
+  const std::size_t threads = mocaplink::io::send_threads_for(vehicle_count, pool.max_parts());
   std::vector<std::array<std::uint8_t, mocaplink::mavlink::kMaxFrameSize>> datagrams(threads,
                                                                                      datagram);
+  // --shared-socket: one unconnected socket per send thread, each thread's vehicles in one
+  // sendmmsg (a datagram per vehicle, its own copy for its system id, sent to its address).
+  std::vector<int> part_sockets;
+  std::vector<std::array<std::uint8_t, mocaplink::mavlink::kMaxFrameSize>> per_vehicle;
+  std::vector<std::vector<mmsghdr>> part_messages(threads);
+  std::vector<iovec> iovecs(vehicle_count);
+  if (shared) {
+    per_vehicle.assign(vehicle_count, datagram);
+    for (std::size_t part = 0; part < threads; ++part) {
+      const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+      if (fd < 0) {
+        std::perror("e2e_floor: socket");
+        return 1;
+      }
+      part_sockets.push_back(fd);
+    }
+    for (std::size_t v = 0; v < vehicle_count; ++v) {
+      per_vehicle[v][5] = config.vehicles[v].system_id;
+      iovecs[v] = iovec{per_vehicle[v].data(), size};
+    }
+  }
+  if (listen && shared) {
+    for (const int fd : part_sockets) {
+      listeners.push_back(std::make_unique<Listener>(loop));
+      listeners.back()->socket.assign(asio::ip::udp::v4(), fd);
+      receive(*listeners.back());
+    }
+  }
   std::uint64_t frames = 0;
   std::atomic<std::uint64_t> failed_sends{0};  // refused by the OS (a full buffer, an ICMP error)
   mocaplink::core::LateFrames late;  // frames that waited too long are skipped, as in the daemon
@@ -186,12 +227,42 @@ int main(int argc, char** argv) {
       const std::uint64_t time_usec =
           mocaplink::core::host_time_usec(mapper.on_frame(f.capture, f.received, f.latency));
       pool.run(threads, [&](std::size_t part) {
+        constexpr std::size_t kChunk = 4;
+        if (shared) {
+          auto& messages = part_messages[part];
+          messages.clear();
+          for (std::size_t first = part * kChunk; first < vehicle_count;
+               first += threads * kChunk) {
+            for (std::size_t v = first; v < std::min(first + kChunk, vehicle_count); ++v) {
+              for (std::size_t b = 0; b < 8; ++b) {
+                per_vehicle[v][10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
+              }
+              mmsghdr m{};
+              m.msg_hdr.msg_name = &addresses[v];
+              m.msg_hdr.msg_namelen = sizeof(sockaddr_in);
+              m.msg_hdr.msg_iov = &iovecs[v];
+              m.msg_hdr.msg_iovlen = 1;
+              messages.push_back(m);
+            }
+          }
+          for (std::size_t k = 0; k < messages.size();) {
+            const auto n = std::min<std::size_t>(messages.size() - k, 1024);
+            const int done =
+                ::sendmmsg(part_sockets[part], messages.data() + k, static_cast<unsigned>(n), 0);
+            if (done <= 0) {
+              failed_sends.fetch_add(1, std::memory_order_relaxed);
+              ++k;
+            } else {
+              k += static_cast<std::size_t>(done);
+            }
+          }
+          return;
+        }
         auto& bytes = datagrams[part];
         for (std::size_t b = 0; b < 8; ++b) {
           bytes[10 + b] = static_cast<std::uint8_t>(time_usec >> (8 * b));
         }
         // The daemon's chunks: 4 vehicles, chunk i on thread i mod threads.
-        constexpr std::size_t kChunk = 4;
         for (std::size_t first = part * kChunk; first < sockets.size(); first += threads * kChunk) {
           for (std::size_t v = first; v < std::min(first + kChunk, sockets.size()); ++v) {
             bytes[5] = config.vehicles[v].system_id;

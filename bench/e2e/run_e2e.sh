@@ -15,7 +15,8 @@
 # SOCKETS=shared makes 250 vehicles share each receiving socket (e2e_receivers --sockets shared),
 # so that the receivers cost the machine little even for 1000 vehicles.
 # FLOOR_LISTEN=1 runs the floor with --listen (its sockets also wait for the vehicles' datagrams, as
-# mocaplink's links do).
+# mocaplink's links do). FLOOR_SHARED_SOCKET=1 runs it with --shared-socket (one unconnected socket
+# per send thread, each thread's datagrams in one sendmmsg; both may be set).
 set -euo pipefail
 bin=$1
 receivers=$2
@@ -39,7 +40,8 @@ fi
 prio=()
 [ -n "${NICE:-}" ] && prio=(nice -n "$NICE")
 floor_args=()
-[ "${FLOOR_LISTEN:-}" = 1 ] && floor_args=(--listen)
+[ "${FLOOR_LISTEN:-}" = 1 ] && floor_args+=(--listen)
+[ "${FLOOR_SHARED_SOCKET:-}" = 1 ] && floor_args+=(--shared-socket)
 
 # measure N BIN ARGS...: runs BIN ARGS... against N fresh receivers for $seconds; prints
 # "frames received p50_us p99_us cpu_pct rss_mib first_p50_us last_p50_us".
