@@ -380,11 +380,15 @@ void Daemon::drain() {
   batch_.clear();
   queue_.drain(batch_);
   for (auto& item : batch_) {
-    if (recorder_) recorder_->on_frame(item.frame);  // the recording keeps every frame
     // Too old to send (core/late_frames.hpp): the loop is behind; go on with fresher frames.
-    if (late_frames_.skip_if_late(item.received, io::host_now())) continue;
-    on_frame(item.frame, item.received);
-    bridge_latency_.add(io::host_now() - item.received);
+    const bool late = late_frames_.skip_if_late(item.received, io::host_now());
+    if (!late) {
+      on_frame(item.frame, item.received);
+      bridge_latency_.add(io::host_now() - item.received);
+    }
+    // After the sends: the recording keeps every frame, one not sent as comments (a replay then
+    // sends what we sent), and a slow write delays only the next frames, which are judged after.
+    if (recorder_) recorder_->on_frame(item.frame, !late);
   }
   summary_.on_frames(batch_.size());
 }
@@ -536,8 +540,11 @@ void Daemon::stop(const std::string& reason) {
                late_frames_.skipped(), true);
   if (recorder_) {
     recorder_->close();
-    spdlog::info("recording: {} frames in {}{}", recorder_->frames_written(),
-                 recorder_->dir().string(), recorder_->failed() ? " (WRITE ERRORS)" : "");
+    const auto not_sent = recorder_->frames_not_sent();
+    spdlog::info("recording: {} frames in {}{}{}", recorder_->frames_written(),
+                 recorder_->dir().string(),
+                 not_sent > 0 ? fmt::format(" ({} not sent, written as comments)", not_sent) : "",
+                 recorder_->failed() ? " (WRITE ERRORS)" : "");
   }
   // 3. Stream links get a bounded time to write their backlog; then the loop ends.
   for (auto& v : vehicles_) {

@@ -72,7 +72,7 @@ void Recorder::write_header(std::optional<double> rate_hz) {
   if (std::fwrite(header.data(), 1, header.size(), csv_) != header.size()) csv_failed_ = true;
 }
 
-void Recorder::on_frame(const core::MocapFrame& frame) {
+void Recorder::on_frame(const core::MocapFrame& frame, bool sent) {
   if (csv_ == nullptr || csv_failed_) return;
   if (last_capture_ && frame.capture_time < *last_capture_) {
     ++frames_skipped_;
@@ -81,12 +81,23 @@ void Recorder::on_frame(const core::MocapFrame& frame) {
   write_header(frame.frame_rate_hz);
   if (!first_capture_) first_capture_ = frame.capture_time;
   last_capture_ = frame.capture_time;
-  const std::string rows = wire::format_recording_frame(frame, *first_capture_);
+  std::string rows = wire::format_recording_frame(frame, *first_capture_);
+  if (!sent) {  // every row a comment (rows end in '\n')
+    std::string commented;
+    for (std::size_t begin = 0; begin < rows.size();) {
+      const std::size_t end = rows.find('\n', begin) + 1;
+      commented.append(kLatePrefix);
+      commented.append(rows, begin, end - begin);
+      begin = end;
+    }
+    rows = std::move(commented);
+  }
   if (std::fwrite(rows.data(), 1, rows.size(), csv_) != rows.size()) {
     csv_failed_ = true;
     return;
   }
   ++frames_written_;
+  if (!sent) ++frames_not_sent_;
 }
 
 void Recorder::on_mavlink(std::size_t vehicle, std::int64_t unix_us,

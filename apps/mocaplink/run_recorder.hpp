@@ -18,6 +18,7 @@
 #include <set>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mocaplink/core/mocap_frame.hpp"
@@ -43,8 +44,12 @@ class Recorder {
   Recorder& operator=(const Recorder&) = delete;
 
   /// One mocap frame. Frames whose capture time goes back (a restarted server) are skipped and
-  /// counted: the format requires time_s never to decrease.
-  void on_frame(const core::MocapFrame& frame);
+  /// counted: the format requires time_s never to decrease. A frame the bridge did not send
+  /// (`sent` false: it came too late, core/late_frames.hpp) is written as comment lines, each row
+  /// after kLatePrefix: kept in the file, but replay:// does not deliver it, so a replay sends
+  /// what the live run sent.
+  void on_frame(const core::MocapFrame& frame, bool sent = true);
+  static constexpr std::string_view kLatePrefix = "# late, not sent: ";
   /// One MAVLink frame sent to or received from the vehicle in slot `vehicle`, at Unix time
   /// `unix_us`.
   void on_mavlink(std::size_t vehicle, std::int64_t unix_us, std::span<const std::uint8_t> bytes);
@@ -54,6 +59,8 @@ class Recorder {
 
   [[nodiscard]] std::uint64_t frames_written() const noexcept { return frames_written_; }
   [[nodiscard]] std::uint64_t frames_skipped() const noexcept { return frames_skipped_; }
+  /// Frames written as comments because the bridge did not send them (among frames_written()).
+  [[nodiscard]] std::uint64_t frames_not_sent() const noexcept { return frames_not_sent_; }
   [[nodiscard]] bool failed() const noexcept;
   [[nodiscard]] const std::filesystem::path& dir() const noexcept { return dir_; }
 
@@ -73,6 +80,7 @@ class Recorder {
   bool tlog_failed_ = false;                            // a closed or unopened .tlog failed
   std::uint64_t frames_written_ = 0;
   std::uint64_t frames_skipped_ = 0;
+  std::uint64_t frames_not_sent_ = 0;
 };
 
 }  // namespace mocaplink::app

@@ -4,7 +4,8 @@
 // full the loop blocks in its write while the source thread keeps queueing frames. Then the test
 // reads the FIFO, the loop goes on, and the frames that waited more than 250 ms must be skipped:
 // the warning, the count in the final summary, and every frame handed over either sent through
-// the core (counted by the Station) or skipped — and recorded either way.
+// the core (counted by the Station) or skipped — and recorded either way, a skipped one as
+// comments. Replaying that recording at speed 1 then sends as many poses as the live run did.
 'use strict';
 
 const childProcess = require('node:child_process');
@@ -12,7 +13,18 @@ const fs = require('node:fs');
 const path = require('node:path');
 const h = require('./harness');
 
-const { assert, sleep } = h;
+const { assert, ID, sleep } = h;
+const LATE = '# late, not sent: ';  // run_recorder.hpp kLatePrefix
+
+// ODOMETRY received by `vehicle` once no more datagrams arrive.
+async function settledOdometry(vehicle) {
+  let before;
+  do {
+    before = vehicle.datagrams;
+    await sleep(200);
+  } while (vehicle.datagrams !== before);
+  return vehicle.ofId(ID.ODOMETRY).length;
+}
 
 async function main() {
   const dir = h.tempDir('late');
@@ -24,10 +36,11 @@ async function main() {
   const reader = fs.openSync(fifo, fs.constants.O_RDONLY | fs.constants.O_NONBLOCK);
 
   const vehicle = await new h.UdpVehicle().bind();
-  const config = h.writeConfig(path.join(dir, 'late.toml'), 'sim://?bodies=3&rate_hz=240', [
-    { name: 'quad', body: 'Body1', link: `udp://127.0.0.1:${vehicle.port}`, profile: 'px4',
-      system_id: 1, rate_hz: 240 },
-  ]);
+  vehicle.socket.setRecvBufferSize(4 << 20);  // the burst after the stall must all arrive
+  const quad = (port) => [{ name: 'quad', body: 'Body1', link: `udp://127.0.0.1:${port}`,
+    profile: 'px4', system_id: 1, rate_hz: 240 }];
+  const config = h.writeConfig(path.join(dir, 'late.toml'), 'sim://?bodies=3&rate_hz=240',
+    quad(vehicle.port));
   const run = h.mocaplink(['run', '--config', config, '--record', record],
     { env: { MOCAPLINK_STATE_DIR: path.join(dir, 'state') } });
   await h.waitFor(() => vehicle.packets.length > 10, 10000, `traffic\n${run.stderr}`);
@@ -77,6 +90,7 @@ async function main() {
   await h.stop(run);
   await reading;
   fs.closeSync(reader);
+  const liveOdometry = await settledOdometry(vehicle);
   vehicle.close();
 
   const final = run.stderr.match(
@@ -86,11 +100,39 @@ async function main() {
   assert.ok(late > 0, `nothing skipped after a stall of over a second\n${run.stderr}`);
   const recording = run.stderr.match(/recording: (\d+) frames in/);
   assert.ok(recording, run.stderr);
-  // Every frame the loop took from the queue was recorded; it was then either tracked or skipped.
+  // Every frame the loop took from the queue was recorded; it was then either tracked or skipped,
+  // and a skipped one is in the file as comments.
   assert.equal(Number(recording[1]), tracked + late, run.stderr);
-  const frames = new Set(csv.split('\n').slice(2).filter((l) => l !== '').map((l) => l.split(',')[1]));
-  assert.equal(frames.size, tracked + late, 'frames in mocap.csv');
-  console.log(`ok: ${late} late frames skipped, ${tracked} tracked (${overflows} queue overflows)`);
+  assert.match(run.stderr,
+    new RegExp(`recording: \\d+ frames in .* \\(${late} not sent, written as comments\\)`));
+  const lines = csv.split('\n').slice(2).filter((l) => l !== '');
+  const frameOf = (row) => row.split(',')[1];
+  const sent = new Set(lines.filter((l) => !l.startsWith('#')).map(frameOf));
+  const notSent = new Set(lines.filter((l) => l.startsWith(LATE))
+    .map((l) => frameOf(l.slice(LATE.length))));
+  assert.equal(sent.size, tracked, 'frames in mocap.csv as rows');
+  assert.equal(notSent.size, late, 'frames in mocap.csv as comments');
+  assert.equal([...notSent].filter((f) => sent.has(f)).length, 0, 'a frame both sent and not');
+
+  // The replay sends what the live run sent: the skipped frames are comments, so it skips them.
+  const file = path.join(dir, 'live.csv');
+  fs.writeFileSync(file, csv, 'latin1');
+  const target = await new h.UdpVehicle().bind();
+  target.socket.setRecvBufferSize(4 << 20);
+  const replayConfig = h.writeConfig(path.join(dir, 'replay.toml'), `replay://${file}?speed=1`,
+    quad(target.port));
+  const replay = h.mocaplink(['run', '--config', replayConfig],
+    { env: { MOCAPLINK_STATE_DIR: path.join(dir, 'replay-state') } });
+  const { code } = await replay.exited;  // it stops by itself at the end of the recording
+  assert.equal(code, 0, replay.stderr);
+  assert.match(replay.stderr, new RegExp(`${tracked} frames replayed`));
+  assert.match(replay.stderr, /0 late frames skipped/);
+  const replayOdometry = await settledOdometry(target);
+  target.close();
+  assert.equal(replayOdometry, liveOdometry,
+    `ODOMETRY: replay ${replayOdometry}, live ${liveOdometry}`);
+  console.log(`ok: ${late} late frames skipped, ${tracked} tracked (${overflows} overflows); ` +
+    `${liveOdometry} ODOMETRY live and replayed`);
 }
 
 main().catch(h.fail);
