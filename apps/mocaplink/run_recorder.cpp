@@ -81,17 +81,8 @@ void Recorder::on_frame(const core::MocapFrame& frame, bool sent) {
   write_header(frame.frame_rate_hz);
   if (!first_capture_) first_capture_ = frame.capture_time;
   last_capture_ = frame.capture_time;
-  std::string rows = wire::format_recording_frame(frame, *first_capture_);
-  if (!sent) {  // every row a comment (rows end in '\n')
-    std::string commented;
-    for (std::size_t begin = 0; begin < rows.size();) {
-      const std::size_t end = rows.find('\n', begin) + 1;
-      commented.append(kLatePrefix);
-      commented.append(rows, begin, end - begin);
-      begin = end;
-    }
-    rows = std::move(commented);
-  }
+  const std::string rows = wire::format_recording_frame(
+      frame, *first_capture_, sent ? std::nullopt : std::optional(kLateComment));
   if (std::fwrite(rows.data(), 1, rows.size(), csv_) != rows.size()) {
     csv_failed_ = true;
     return;

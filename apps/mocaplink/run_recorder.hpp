@@ -46,10 +46,10 @@ class Recorder {
   /// One mocap frame. Frames whose capture time goes back (a restarted server) are skipped and
   /// counted: the format requires time_s never to decrease. A frame the bridge did not send
   /// (`sent` false: it came too late, core/late_frames.hpp) is written as comment lines, each row
-  /// after kLatePrefix: kept in the file, but replay:// does not deliver it, so a replay sends
-  /// what the live run sent.
+  /// after "#" kLateComment: kept in the file, but replay:// does not deliver it, so a replay
+  /// sends what the live run sent.
   void on_frame(const core::MocapFrame& frame, bool sent = true);
-  static constexpr std::string_view kLatePrefix = "# late, not sent: ";
+  static constexpr std::string_view kLateComment = " late, not sent: ";
   /// One MAVLink frame sent to or received from the vehicle in slot `vehicle`, at Unix time
   /// `unix_us`.
   void on_mavlink(std::size_t vehicle, std::int64_t unix_us, std::span<const std::uint8_t> bytes);

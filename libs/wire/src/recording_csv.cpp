@@ -299,9 +299,11 @@ std::string format_recording_header(std::string_view source, std::optional<doubl
   return out;
 }
 
-std::string format_recording_frame(const core::MocapFrame& frame, core::SourceTime first_capture) {
+std::string format_recording_frame(const core::MocapFrame& frame, core::SourceTime first_capture,
+                                   std::optional<std::string_view> comment) {
   std::string out;
   std::string prefix;
+  if (comment) prefix.append("#").append(*comment);
   append_fixed6(prefix, core::to_seconds(frame.capture_time - first_capture));
   prefix += ',' + std::to_string(frame.frame_number) + ',';
   for (const auto& body : frame.bodies) {

@@ -14,7 +14,7 @@ const path = require('node:path');
 const h = require('./harness');
 
 const { assert, ID, sleep } = h;
-const LATE = '# late, not sent: ';  // run_recorder.hpp kLatePrefix
+const LATE = '# late, not sent: ';  // '#' and run_recorder.hpp kLateComment
 
 // ODOMETRY received by `vehicle` once no more datagrams arrive.
 async function settledOdometry(vehicle) {

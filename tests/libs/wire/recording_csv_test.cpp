@@ -202,5 +202,22 @@ TEST(RecordingCsv, WrittenFramesReadBack) {
   EXPECT_EQ(rec.frames[0].frame_rate_hz, 100.0);
 }
 
+TEST(RecordingCsv, AFrameWrittenAsACommentIsKeptButNotRead) {
+  core::MocapFrame frame;
+  frame.frame_number = 7;
+  core::BodySample a;
+  a.name = "A";
+  core::BodySample b;
+  b.name = "B";
+  frame.bodies = {a, b};
+  const std::string rows = format_recording_frame(frame, {}, " late: ");
+  EXPECT_EQ(rows, "# late: 0.000000,7,A,0,,,,,,,\n# late: 0.000000,7,B,0,,,,,,,\n");
+  frame.frame_number = 8;
+  const Recording rec =
+      parse_ok(format_recording_header("x", 100.0) + rows + format_recording_frame(frame, {}));
+  ASSERT_EQ(rec.frames.size(), 1u);  // only the frame written as rows
+  EXPECT_EQ(rec.frames[0].frame_number, 8u);
+}
+
 }  // namespace
 }  // namespace mocaplink::wire

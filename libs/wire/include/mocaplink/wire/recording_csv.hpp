@@ -118,8 +118,11 @@ struct Recording {
 /// 6 decimals (1 µm, 1 µs). A name with ',' or '"' is quoted; control characters in a name
 /// (CR, LF, NUL, ...) become '?' (the format is line-based), an empty name is written '?' and
 /// names are cut to kMaxBodyNameBytes. A tracked body with a non-finite pose is written as
-/// untracked, so that every written file reads back.
+/// untracked, so that every written file reads back. With a `comment`, every row is written as a
+/// comment line, '#' + comment + the row: kept in the file, skipped by the reader (run --record
+/// writes a frame it did not send so).
 [[nodiscard]] std::string format_recording_frame(const core::MocapFrame& frame,
-                                                 core::SourceTime first_capture);
+                                                 core::SourceTime first_capture,
+                                                 std::optional<std::string_view> comment = {});
 
 }  // namespace mocaplink::wire
