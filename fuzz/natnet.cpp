@@ -22,6 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   (void)nn::parse_server_info(payload);
   (void)nn::parse_connect(payload);
   (void)nn::parse_string_payload(payload);
+  (void)nn::parse_response_text(payload);
   (void)nn::parse_echo_request(payload);
   static constexpr std::array<nn::Version, 9> kVersions = {
       nn::Version{2, 5}, nn::Version{2, 7}, nn::Version{2, 9}, nn::Version{3, 0}, nn::Version{3, 1},

@@ -400,6 +400,19 @@ std::vector<std::byte> encode_string_packet(MessageId id, const std::string& tex
   return encode_packet(id, payload);
 }
 
+std::string parse_response_text(std::span<const std::byte> payload) {
+  std::string text;
+  for (const std::byte b : payload) {
+    if (b == std::byte{0}) break;
+    text.push_back(static_cast<char>(b));
+  }
+  return text;
+}
+
+std::vector<std::byte> encode_response_text(const std::string& text) {
+  return encode_packet(MessageId::response, std::as_bytes(std::span(text.data(), text.size())));
+}
+
 Result<std::uint64_t> parse_echo_request(std::span<const std::byte> payload) {
   Cursor c(payload);
   std::uint64_t value = 0;

@@ -371,12 +371,19 @@ std::string encode_parameters(std::span<const std::string> names, int minor,
       x += "    <Body>\n      <Name>" + escape(name) + "</Name>\n";
       if (new_format) {
         if (minor >= 24) x += "      <Enabled>true</Enabled>\n";
+        // Every element QTM writes for a body from 1.21 on (the Qualisys C++ SDK refuses a body
+        // without BoneLengthTolerance, Filter or Data_orientation), minus the optional Mesh.
         x += "      <Color R=\"0\" G=\"255\" B=\"0\"/>\n"
              "      <MaximumResidual>10.000000</MaximumResidual>\n"
              "      <MinimumMarkersInBody>3</MinimumMarkersInBody>\n"
+             "      <BoneLengthTolerance>10.000000</BoneLengthTolerance>\n"
+             "      <Filter Preset=\"No filter\"/>\n"
              "      <Points/>\n"
              "      <Data_origin X=\"0.000000\" Y=\"0.000000\" Z=\"0.000000\" "
-             "Relative_body=\"1\">0</Data_origin>\n";
+             "Relative_body=\"1\">0</Data_origin>\n"
+             "      <Data_orientation R11=\"1.000000\" R12=\"0.000000\" R13=\"0.000000\" "
+             "R21=\"0.000000\" R22=\"1.000000\" R23=\"0.000000\" R31=\"0.000000\" "
+             "R32=\"0.000000\" R33=\"1.000000\" Relative_body=\"1\">0</Data_orientation>\n";
       } else {
         x += "      <RGBColor>ffffff</RGBColor>\n";
       }

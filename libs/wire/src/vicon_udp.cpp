@@ -4,6 +4,8 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace mocaplink::wire::vicon_udp {
 
@@ -85,15 +87,33 @@ Result<Datagram> parse_datagram(std::span<const std::byte> bytes, double max_abs
     }
     out.objects.push_back(std::move(object).value());
   }
-  if (!r.empty()) {
-    return parse_error(r.offset(), std::to_string(r.remaining()) + " bytes after the last item");
+  // The block's padding: zero bytes only. Anything else is an item the count left out, or bytes
+  // that are not this stream; neither may become a pose.
+  const std::size_t tail = r.offset();
+  const auto rest = bytes.subspan(tail);
+  const auto nonzero =
+      std::find_if(rest.begin(), rest.end(), [](std::byte b) { return b != std::byte{0}; });
+  if (nonzero != rest.end()) {
+    const auto at = tail + static_cast<std::size_t>(nonzero - rest.begin());
+    char value[8];
+    std::snprintf(value, sizeof value, "0x%02x", static_cast<unsigned>(*nonzero));
+    return parse_error(at, "trailing non-zero bytes after " + std::to_string(*count) +
+                               (*count == 1 ? " item (" : " items (") + value + " in a " +
+                               std::to_string(bytes.size()) + "-byte datagram)");
   }
+  out.padding_bytes = rest.size();
   return out;
 }
 
-std::vector<std::byte> encode_datagram(std::uint32_t frame, std::span<const Object> objects) {
+std::vector<std::byte> encode_datagram(std::uint32_t frame, std::span<const Object> objects,
+                                       std::size_t block_bytes) {
+  if (objects.size() > objects_per_block(block_bytes)) {
+    std::fprintf(stderr, "vicon_udp::encode_datagram: %zu objects do not fit in %zu bytes\n",
+                 objects.size(), block_bytes);
+    std::abort();
+  }
   std::vector<std::byte> out;
-  out.reserve(kHeaderBytes + objects.size() * (kItemHeaderBytes + kObjectBytes));
+  out.reserve(std::max(block_bytes, kHeaderBytes + objects.size() * kObjectItemBytes));
   put_le(out, frame, 4);
   put_le(out, objects.size(), 1);
   for (const Object& o : objects) {
@@ -107,6 +127,7 @@ std::vector<std::byte> encode_datagram(std::uint32_t frame, std::span<const Obje
       put_le(out, std::bit_cast<std::uint64_t>(x), 8);
     }
   }
+  if (out.size() < block_bytes) out.resize(block_bytes, std::byte{0});  // Tracker's padding
   return out;
 }
 

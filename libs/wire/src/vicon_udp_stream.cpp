@@ -62,6 +62,7 @@ Result<std::optional<core::MocapFrame>> Stream::on_datagram(std::span<const std:
   }
   const Datagram& d = parsed.value();
   counters_.unknown_items += d.unknown_items;
+  if (d.padding_bytes > 0) ++counters_.padded;
   std::int64_t advanced = 0;  // frame numbers since the last datagram; 0: a new start
   lost_sent_ = false;
   if (last_raw_) {

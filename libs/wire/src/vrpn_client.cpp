@@ -59,8 +59,8 @@ std::string body_name(const std::string& tracker, std::int32_t sensor) {
   return sensor == 0 ? tracker : tracker + ":" + std::to_string(sensor);
 }
 
-std::optional<core::MocapFrame> FrameAssembler::on_report(const Report& report,
-                                                          core::HostTime arrival) {
+std::optional<AssembledFrame> FrameAssembler::on_report(const Report& report,
+                                                        core::HostTime arrival) {
   Key key{report.tracker, report.pose.sensor};
   auto it = index_.find(key);
   if (it == index_.end()) {
@@ -73,7 +73,7 @@ std::optional<core::MocapFrame> FrameAssembler::on_report(const Report& report,
                            report.pose.q_world_sensor, arrival});
   }
   const std::size_t k = it->second;
-  std::optional<core::MocapFrame> closed;
+  std::optional<AssembledFrame> closed;
   if (in_round_.contains(k)) closed = close_round();
   Known& body = known_[k];
   const bool same =
@@ -90,15 +90,18 @@ std::optional<core::MocapFrame> FrameAssembler::on_report(const Report& report,
   }
   round_.push_back(Pending{k, !frozen});
   in_round_.insert(k);
+  round_last_ = arrival;
+  settling_ = false;  // judged again at the next drain
   last_report_ = arrival;
   lost_sent_ = false;
   return closed;
 }
 
-std::optional<core::MocapFrame> FrameAssembler::on_drained() {
+std::optional<AssembledFrame> FrameAssembler::on_drained() {
   if (round_.empty()) return std::nullopt;
   if (!std::includes(in_round_.begin(), in_round_.end(), previous_round_.begin(),
                      previous_round_.end())) {
+    settling_ = true;
     return std::nullopt;
   }
   return close_round();
@@ -114,10 +117,11 @@ void FrameAssembler::reset() {
   round_stamp_.reset();
   last_stamp_.reset();
   last_report_.reset();
+  settling_ = false;
   lost_sent_ = true;
 }
 
-std::optional<core::MocapFrame> FrameAssembler::flush() {
+std::optional<AssembledFrame> FrameAssembler::flush() {
   if (round_.empty()) return std::nullopt;
   return close_round();
 }
@@ -134,7 +138,7 @@ core::SourceTime FrameAssembler::next_capture(core::HostTime host, std::optional
   return clock_.next(host, step);
 }
 
-core::MocapFrame FrameAssembler::close_round() {
+AssembledFrame FrameAssembler::close_round() {
   core::MocapFrame frame;
   frame.frame_number = next_frame_++;
   frame.frame_step = 0;
@@ -152,19 +156,25 @@ core::MocapFrame FrameAssembler::close_round() {
   round_.clear();
   round_start_.reset();
   round_stamp_.reset();
+  settling_ = false;
   lost_sent_ = false;
-  return frame;
+  return AssembledFrame{std::move(frame), round_last_};
 }
 
 std::optional<core::HostTime> FrameAssembler::idle_deadline() const {
   if (lost_sent_ || !last_report_) return std::nullopt;
-  return *last_report_ + config_.lost_after;
+  const core::HostTime lost = *last_report_ + config_.lost_after;
+  if (settling_ && !round_.empty()) return std::min(lost, round_last_ + config_.settle_after);
+  return lost;
 }
 
-std::optional<core::MocapFrame> FrameAssembler::on_idle(core::HostTime now) {
+std::optional<AssembledFrame> FrameAssembler::on_idle(core::HostTime now) {
+  if (settling_ && !round_.empty() && now >= round_last_ + config_.settle_after) {
+    return close_round();  // nothing more of it came: deliver it now, not at the next update
+  }
   const auto deadline = idle_deadline();
   if (!deadline || now < *deadline) return std::nullopt;
-  std::optional<core::MocapFrame> pending = flush();
+  std::optional<AssembledFrame> pending = flush();
   if (pending) return pending;  // an incomplete round first; the loss frame next time
   lost_sent_ = true;
   previous_round_.clear();
@@ -177,7 +187,7 @@ std::optional<core::MocapFrame> FrameAssembler::on_idle(core::HostTime now) {
     s.name = k.name;
     frame.bodies.push_back(std::move(s));
   }
-  return frame;
+  return AssembledFrame{std::move(frame), now};
 }
 
 }  // namespace mocaplink::wire::vrpn

@@ -157,11 +157,12 @@ std::vector<std::byte> encode_pos_quat(const PosQuat& report) {
 }
 
 std::vector<std::byte> encode_velocity(std::int32_t sensor, const Eigen::Vector3d& v_m_s,
-                                       double dt_s) {
+                                       const Eigen::Quaterniond& vel_quat, double vel_quat_dt_s) {
   std::vector<std::byte> out;
   put_be(out, sensor);
   put_be(out, sensor);
-  for (const double x : {v_m_s.x(), v_m_s.y(), v_m_s.z(), 0.0, 0.0, 0.0, 1.0, dt_s}) {
+  for (const double x : {v_m_s.x(), v_m_s.y(), v_m_s.z(), vel_quat.x(), vel_quat.y(), vel_quat.z(),
+                         vel_quat.w(), vel_quat_dt_s}) {
     put_be(out, x);
   }
   return out;

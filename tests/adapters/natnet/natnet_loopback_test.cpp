@@ -176,6 +176,9 @@ TEST(NatnetLoopback, AClientWithoutKeepAliveIsDroppedAndComesBack) {
   ASSERT_TRUE(got.wait_frames(before + 5));  // served again after reconnecting
   client.stop();
   server->stop();
+  // Told so by the server (NAT_DISCONNECTBYTIMEOUT), as Motive does, not left to notice silence.
+  EXPECT_GE(client.natnet_counters().disconnects_by_server.load(), 1u);
+  EXPECT_EQ(client.natnet_counters().timeouts.load(), 0u);
 }
 
 TEST(NatnetLoopback, DisconnectOnStopEndsUnicastStreaming) {

@@ -41,6 +41,7 @@ inline NatnetServerOptions unicast_server(std::uint16_t port = 0) {
   o.listen_host = "127.0.0.1";
   o.port = port;
   o.multicast = false;
+  o.data_port = 0;  // frames leave from a free port (Motive: 1511), announced in the server info
   return o;
 }
 

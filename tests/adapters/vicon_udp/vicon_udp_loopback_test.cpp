@@ -1,9 +1,12 @@
 // vicon-udp:// receiver ↔ the `serve --protocol vicon-udp` sender over real UDP on 127.0.0.1, and
 // hand-made datagrams from a raw socket: poses in m with the configured rotation, frame steps,
-// split frames, malformed and foreign datagrams counted, silence → every body lost once.
+// split frames, Tracker's zero-padded blocks of every size (and the exact size), malformed and
+// foreign datagrams counted with their reason, silence → every body lost once.
 // Readiness is awaited on conditions, never by sleeping; nothing asserts on timing.
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <asio.hpp>
@@ -52,14 +55,17 @@ std::unique_ptr<ViconUdpSender> start_sender(std::uint16_t to_port,
   return sender;
 }
 
-void loopback(vu::EulerOrder order, const char* rotation) {
+/// `block_size`: the emulator's setting, or "" for its default (1024).
+void loopback(vu::EulerOrder order, const char* rotation, const std::string& block_size = "") {
   auto options = receiver_options();
   options.rotation = order;
   ViconUdpSource source(options, "vicon-udp://test");
   Collector got;
   source.start(got.frame_sink(), got.state_sink());
   ASSERT_NE(source.bound_port(), 0);
-  auto sender = start_sender(source.bound_port(), {{"rotation", rotation}, {"frame_step", "2"}});
+  std::vector<std::pair<std::string, std::string>> set{{"rotation", rotation}, {"frame_step", "2"}};
+  if (!block_size.empty()) set.emplace_back("block_size", block_size);
+  auto sender = start_sender(source.bound_port(), set);
   ASSERT_TRUE(got.wait_frames(40));
   sender->stop();
   source.stop();
@@ -83,10 +89,51 @@ void loopback(vu::EulerOrder order, const char* rotation) {
     }
   }
   EXPECT_EQ(source.counters().malformed, 0u);
+  EXPECT_EQ(source.counters().last_rejection.get(), "");
+  // Every datagram padded to the block, but with block_size=0 (exactly the items).
+  const auto& c = source.udp_counters();
+  if (block_size == "0") {
+    EXPECT_EQ(c.padded, 0u);
+  } else {
+    EXPECT_GT(c.padded, 0u);
+    EXPECT_EQ(c.padded, c.datagrams);
+  }
 }
 
 TEST(ViconUdpLoopback, PosesFramesAndStepsXyz) {
   loopback(vu::EulerOrder::xyz, "xyz");
+}
+
+// Tracker's block sizes, and no padding at all: the same poses.
+TEST(ViconUdpLoopback, BlockSize256) {
+  loopback(vu::EulerOrder::xyz, "xyz", "256");
+}
+TEST(ViconUdpLoopback, BlockSize512) {
+  loopback(vu::EulerOrder::xyz, "xyz", "512");
+}
+TEST(ViconUdpLoopback, BlockSize1024) {
+  loopback(vu::EulerOrder::xyz, "xyz", "1024");
+}
+TEST(ViconUdpLoopback, ExactSizeWithoutPadding) {
+  loopback(vu::EulerOrder::xyz, "xyz", "0");
+}
+
+// Two bodies in 80-byte blocks (one object each): split over two datagrams with one frame
+// number, merged back into one frame.
+TEST(ViconUdpLoopback, BlockTooSmallForEveryObjectSplitsTheFrame) {
+  ViconUdpSource source(receiver_options(), "vicon-udp://test");
+  Collector got;
+  source.start(got.frame_sink(), got.state_sink());
+  auto sender = start_sender(source.bound_port(), {{"block_size", "80"}});
+  ASSERT_TRUE(got.wait_frames(40));
+  sender->stop();
+  source.stop();
+  EXPECT_GT(source.udp_counters().split_frames, 0u);
+  EXPECT_EQ(source.udp_counters().padded, 0u);  // one object fills 80 bytes exactly
+  EXPECT_EQ(source.counters().malformed, 0u);
+  bool merged = false;
+  for (const auto& f : frames_of(got.events())) merged = merged || f.bodies.size() == 2;
+  EXPECT_TRUE(merged);
 }
 
 TEST(ViconUdpLoopback, PosesFramesAndStepsZyx) {
@@ -117,6 +164,37 @@ TEST(ViconUdpLoopback, SplitDatagramsAndZerosForOccluded) {
   EXPECT_TRUE(zero_untracked);
 }
 
+/// Polls `done` (another thread's counters) for up to 5 s.
+template <typename F>
+bool wait_until(F done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+TEST(ViconUdpHostile, TrailingGarbageRefusedWithItsReason) {
+  ViconUdpSource source(receiver_options(), "vicon-udp://test");
+  Collector got;
+  source.start(got.frame_sink(), got.state_sink());
+  const asio::ip::udp::endpoint to(asio::ip::make_address("127.0.0.1"), source.bound_port());
+  asio::io_context io;
+  asio::ip::udp::socket socket(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+  std::vector<vu::Object> three(3);
+  for (std::size_t i = 0; i < three.size(); ++i) three[i].name = "Body" + std::to_string(i + 1);
+  auto bytes = vu::encode_datagram(7, three, 1024);
+  bytes[1000] = std::byte{0xFF};
+  socket.send_to(asio::buffer(bytes), to);
+  ASSERT_TRUE(wait_until([&] { return source.counters().malformed == 1; }));
+  EXPECT_EQ(source.counters().last_rejection.get(),
+            "malformed datagram at byte 1000: trailing non-zero bytes after 3 items (0xff in a "
+            "1024-byte datagram)");
+  EXPECT_EQ(source.counters().frames, 0u);
+  source.stop();
+}
+
 TEST(ViconUdpHostile, MalformedAndForeignDatagramsCountedSilenceLosesBodies) {
   auto options = receiver_options();
   options.from = "127.0.0.1";
@@ -129,21 +207,28 @@ TEST(ViconUdpHostile, MalformedAndForeignDatagramsCountedSilenceLosesBodies) {
   asio::ip::udp::socket good(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
   asio::ip::udp::socket other(io, asio::ip::udp::endpoint(asio::ip::make_address("127.0.0.2"), 0));
 
-  // Malformed: too short, trailing bytes, a NaN.
+  // Malformed: too short, a non-zero byte in the padding, a NaN.
   good.send_to(asio::buffer(std::string("\x01\x02\x03")), to);
   vu::Object a;
   a.name = "Drone1";
   a.t_mm = {1000, -500, 250};
-  auto trailing = vu::encode_datagram(1, std::span(&a, 1));
-  trailing.push_back(std::byte{0});
+  auto trailing = vu::encode_datagram(1, std::span(&a, 1), 256);
+  trailing[200] = std::byte{0x41};
   good.send_to(asio::buffer(trailing), to);
   vu::Object nan = a;
   nan.rot_rad.x() = std::nan("");
   good.send_to(asio::buffer(vu::encode_datagram(2, std::span(&nan, 1))), to);
+  ASSERT_TRUE(wait_until([&] { return source.counters().malformed == 3; }));
+  EXPECT_EQ(source.counters().last_rejection.get(),
+            "malformed datagram at byte 56: non-finite number in object Drone1");
   // From another address: dropped before parsing.
   other.send_to(asio::buffer(vu::encode_datagram(3, std::span(&a, 1))), to);
-  // A good one: the only frame.
-  good.send_to(asio::buffer(vu::encode_datagram(4, std::span(&a, 1))), to);
+  ASSERT_TRUE(wait_until([&] { return source.counters().refused == 1; }));
+  EXPECT_EQ(source.counters().last_rejection.get(),
+            "datagram from 127.0.0.2, not 127.0.0.1 (from=)");
+  EXPECT_EQ(source.counters().rejected(), 4u);
+  // A good one, padded to 1024 bytes: the only frame.
+  good.send_to(asio::buffer(vu::encode_datagram(4, std::span(&a, 1), 1024)), to);
   ASSERT_TRUE(got.wait_frames(1));
   // Then silence: one frame with Drone1 untracked.
   ASSERT_TRUE(got.wait_frames(2));

@@ -6,21 +6,12 @@
 // clear), then the same over unicast with the bitstream 3.0 layout and the emulator keeping z-up.
 'use strict';
 
-const dgram = require('node:dgram');
 const path = require('node:path');
 const h = require('./harness');
 const scene = require('./scene');
 
 const { assert, ID } = h;
 const SECONDS = 6.5;
-
-async function freeUdpPort() {
-  const s = dgram.createSocket('udp4');
-  await new Promise((resolve) => s.bind(0, '127.0.0.1', resolve));
-  const { port } = s.address();
-  await new Promise((resolve) => s.close(resolve));
-  return port;
-}
 
 async function runOnce(dir, sceneFile, { serveSettings, query, up, label }) {
   const serveArgs = ['serve', '--protocol', 'natnet', '--from', `replay:${sceneFile}`,
@@ -75,7 +66,7 @@ async function main() {
   const dir = h.tempDir('natnet');
   const sceneFile = path.join(dir, 'scene.csv');
   scene.writeScene(sceneFile, SECONDS);
-  const dataPort = await freeUdpPort();
+  const dataPort = await h.freeUdpPort();
   const multicast = await runOnce(dir, sceneFile, {
     label: 'multicast',
     serveSettings: ['transport=multicast', 'group=239.255.42.98', `data_port=${dataPort}`,
@@ -85,7 +76,7 @@ async function main() {
   });
   const unicast = await runOnce(dir, sceneFile, {
     label: 'unicast',
-    serveSettings: ['transport=unicast', 'version=3.0', 'up=z', `data_port=${await freeUdpPort()}`],
+    serveSettings: ['transport=unicast', 'version=3.0', 'up=z', `data_port=${await h.freeUdpPort()}`],
     query: '?local=127.0.0.1',
     up: '+z',
   });

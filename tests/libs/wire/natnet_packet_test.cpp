@@ -479,6 +479,26 @@ TEST(NatnetCodec, RejectsTruncatedAndTrailingBytes) {
   EXPECT_FALSE(nn::parse_frame(payload, {5, 0}).ok());
 }
 
+TEST(NatnetCodec, AResponseTextIsReadWithOrWithoutItsNul) {
+  // "Bitstream,4.1.0": 4-byte header (id 3, 15 bytes), the text, no NUL.
+  const auto bare = nn::encode_response_text("Bitstream,4.1.0");
+  ASSERT_EQ(bare.size(), 4u + 15u);
+  EXPECT_EQ(bare[0], std::byte{3});
+  EXPECT_EQ(bare[2], std::byte{15});
+  EXPECT_NE(bare.back(), std::byte{0});
+  const auto packet = nn::split_packet(bare);
+  ASSERT_TRUE(packet.ok());
+  EXPECT_EQ(nn::parse_response_text(packet.value().payload), "Bitstream,4.1.0");
+  // A server that terminates it, and one that pads after the NUL, read the same.
+  const auto terminated = nn::encode_string_packet(nn::MessageId::response, "Bitstream,4.1.0");
+  EXPECT_EQ(nn::parse_response_text(nn::split_packet(terminated).value().payload),
+            "Bitstream,4.1.0");
+  std::vector<std::byte> padded(terminated.begin() + 4, terminated.end());
+  padded.insert(padded.end(), {std::byte{'x'}, std::byte{0}});
+  EXPECT_EQ(nn::parse_response_text(padded), "Bitstream,4.1.0");
+  EXPECT_EQ(nn::parse_response_text({}), "");
+}
+
 TEST(NatnetMapping, TrackingValidBitAndBadPosesAreUntracked) {
   nn::FrameOfData f = golden_frame();
   nn::RigidBodySample lost = f.rigid_bodies[0];

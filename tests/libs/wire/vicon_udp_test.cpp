@@ -101,8 +101,8 @@ TEST(ViconUdp, Refusals) {
   auto small = datagram(1, 1, {hex("00 0400 41424344")});  // object item of 4 bytes
   EXPECT_FALSE(parse_datagram(small));
   auto trailing = hex(kDrone1Hex);
-  trailing.push_back(std::byte{0});
-  EXPECT_FALSE(parse_datagram(trailing));
+  trailing.push_back(std::byte{1});
+  EXPECT_FALSE(parse_datagram(trailing));  // a non-zero byte after the last item
   auto count = hex(kDrone1Hex);
   count[4] = std::byte{2};  // says two items, holds one
   EXPECT_FALSE(parse_datagram(count));
@@ -113,6 +113,90 @@ TEST(ViconUdp, Refusals) {
   EXPECT_FALSE(parse_datagram(datagram(1, 1, {object_item("A", {NAN, 0, 0, 0, 0, 0})})));
   EXPECT_FALSE(parse_datagram(datagram(1, 1, {object_item("A", {0, 0, 0, 0, INFINITY, 0})})));
   EXPECT_FALSE(parse_datagram(datagram(1, 1, {object_item("A", {2e6, 0, 0, 0, 0, 0})}), 1e6));
+}
+
+// Tracker's blocks (its "Data Block Size"): the items, then zero bytes to 256, 512 or 1024.
+std::vector<std::byte> padded(std::vector<std::byte> bytes, std::size_t block) {
+  bytes.resize(block, std::byte{0});
+  return bytes;
+}
+
+TEST(ViconUdp, WorkedExamplePaddedToEveryBlockSizeAndExact) {
+  for (const std::size_t block : {80u, 256u, 512u, 1024u}) {
+    SCOPED_TRACE(block);
+    const auto bytes = padded(hex(kDrone1Hex), block);
+    auto d = parse_datagram(bytes);
+    ASSERT_TRUE(d) << d.error().reason;
+    EXPECT_EQ(d.value().frame, 1234u);
+    ASSERT_EQ(d.value().objects.size(), 1u);
+    EXPECT_EQ(d.value().objects[0].name, "Drone1");
+    EXPECT_EQ(d.value().objects[0].t_mm, Eigen::Vector3d(1000, -500, 250));
+    EXPECT_EQ(d.value().objects[0].rot_rad, Eigen::Vector3d(0, 0, std::numbers::pi / 2));
+    EXPECT_EQ(d.value().padding_bytes, block - 80u);
+    // The encoder pads the same way (0: the exact 80 bytes).
+    EXPECT_EQ(encode_datagram(1234, d.value().objects, block == 80u ? 0u : block), bytes);
+  }
+  // Zero items in a block: a frame without objects.
+  auto empty = parse_datagram(padded(hex("0100000000"), 256));
+  ASSERT_TRUE(empty);
+  EXPECT_TRUE(empty.value().objects.empty());
+  EXPECT_EQ(empty.value().padding_bytes, 251u);
+}
+
+TEST(ViconUdp, NonZeroTrailingBytesRefusedWithTheReason) {
+  // Three objects (230 bytes) in a 1024-byte block, with one stray byte anywhere in the padding.
+  const auto three =
+      datagram(5, 3,
+               {object_item("A", {1, 2, 3, 0, 0, 0}), object_item("B", {4, 5, 6, 0, 0, 0}),
+                object_item("C", {7, 8, 9, 0, 0, 0})});
+  ASSERT_EQ(three.size(), 230u);
+  ASSERT_TRUE(parse_datagram(padded(three, 1024)));
+  for (const std::size_t at : {230u, 500u, 1023u}) {
+    SCOPED_TRACE(at);
+    auto bytes = padded(three, 1024);
+    bytes[at] = std::byte{0x41};
+    auto d = parse_datagram(bytes);
+    ASSERT_FALSE(d);
+    EXPECT_EQ(d.error().offset, at);
+    EXPECT_EQ(d.error().reason,
+              "trailing non-zero bytes after 3 items (0x41 in a 1024-byte datagram)");
+  }
+  // A count that leaves an object out: the object is in the "padding", so the datagram is refused
+  // rather than delivered without it.
+  auto undercount = padded(three, 512);
+  undercount[4] = std::byte{2};
+  auto d = parse_datagram(undercount);
+  ASSERT_FALSE(d);
+  EXPECT_EQ(d.error().offset, 156u);  // C's id is 0; its size (72) is the first non-zero byte
+  EXPECT_EQ(d.error().reason,
+            "trailing non-zero bytes after 2 items (0x48 in a 512-byte datagram)");
+}
+
+TEST(ViconUdp, CountBeyondTheItemsReadsPaddingAsAnEmptyItemAndRefuses) {
+  auto over = padded(hex(kDrone1Hex), 256);
+  over[4] = std::byte{2};  // says two items: the second header is the padding's zeros
+  auto d = parse_datagram(over);
+  ASSERT_FALSE(d);
+  EXPECT_EQ(d.error().reason, "object item of 0 bytes, expected 72");
+}
+
+TEST(ViconUdp, ObjectsPerBlock) {
+  EXPECT_EQ(objects_per_block(256), 3u);
+  EXPECT_EQ(objects_per_block(512), 6u);
+  EXPECT_EQ(objects_per_block(1024), 13u);
+  EXPECT_EQ(objects_per_block(80), 1u);
+  EXPECT_EQ(objects_per_block(79), 0u);
+  EXPECT_EQ(objects_per_block(0), 255u);
+  EXPECT_EQ(objects_per_block(kMaxDatagramBytes), 255u);
+  // 13 objects fill 980 of 1024 bytes.
+  std::vector<Object> objects(13);
+  for (std::size_t i = 0; i < objects.size(); ++i) objects[i].name = "Body" + std::to_string(i + 1);
+  const auto bytes = encode_datagram(1, objects, 1024);
+  ASSERT_EQ(bytes.size(), 1024u);
+  auto d = parse_datagram(bytes);
+  ASSERT_TRUE(d) << d.error().reason;
+  EXPECT_EQ(d.value().objects.size(), 13u);
+  EXPECT_EQ(d.value().padding_bytes, 1024u - 980u);
 }
 
 TEST(ViconUdp, TwentyFourCharacterNameWithoutNul) {
@@ -230,6 +314,21 @@ TEST(ViconUdpStream, MalformedCounted) {
   Stream s;
   EXPECT_FALSE(s.on_datagram(hex("0102"), {}));
   EXPECT_EQ(s.counters().malformed, 1u);
+}
+
+TEST(ViconUdpStream, PaddedDatagramsAreFramesAndCounted) {
+  Stream s;
+  auto f = s.on_datagram(padded(hex(kDrone1Hex), 1024), {});
+  ASSERT_TRUE(f && f.value());
+  ASSERT_EQ(f.value()->bodies.size(), 1u);
+  EXPECT_EQ(f.value()->bodies[0].name, "Drone1");
+  EXPECT_TRUE(f.value()->bodies[0].tracked);
+  EXPECT_EQ(s.counters().padded, 1u);
+  auto bad = padded(hex(kDrone1Hex), 1024);
+  bad[1000] = std::byte{0xFF};
+  EXPECT_FALSE(s.on_datagram(bad, {}));
+  EXPECT_EQ(s.counters().malformed, 1u);
+  EXPECT_EQ(s.counters().padded, 1u);
 }
 
 }  // namespace

@@ -105,32 +105,92 @@ TEST(VrpnFrameAssembler, RoundsCloseOnRepeatOrWhenCompleteOnDrain) {
   // First round: nothing expected yet, so a drained socket closes it.
   auto f1 = a.on_drained();
   ASSERT_TRUE(f1);
-  EXPECT_EQ(f1->frame_number, 1u);
-  EXPECT_EQ(f1->frame_step, 0u);
-  EXPECT_EQ(f1->capture_time, core::source_time_from_ns(0));
-  ASSERT_EQ(f1->bodies.size(), 2u);
-  EXPECT_EQ(f1->bodies[0].name, "A");
-  EXPECT_EQ(f1->bodies[1].name, "B:1");
-  EXPECT_TRUE(f1->bodies[0].tracked);
+  EXPECT_EQ(f1->frame.frame_number, 1u);
+  EXPECT_EQ(f1->frame.frame_step, 0u);
+  EXPECT_EQ(f1->frame.capture_time, core::source_time_from_ns(0));
+  ASSERT_EQ(f1->frame.bodies.size(), 2u);
+  EXPECT_EQ(f1->frame.bodies[0].name, "A");
+  EXPECT_EQ(f1->frame.bodies[1].name, "B:1");
+  EXPECT_TRUE(f1->frame.bodies[0].tracked);
   // Second round: A alone is incomplete on drain; B completes it.
   EXPECT_FALSE(a.on_report(report("A", 1.1), at_ms(10)));
   EXPECT_FALSE(a.on_drained());
   EXPECT_FALSE(a.on_report(report("B", 2.1, 1), at_ms(11)));
   auto f2 = a.on_drained();
   ASSERT_TRUE(f2);
-  EXPECT_EQ(f2->frame_number, 2u);
-  EXPECT_EQ(f2->capture_time, core::source_time_from_ns(10'000'000));
+  EXPECT_EQ(f2->frame.frame_number, 2u);
+  EXPECT_EQ(f2->frame.capture_time, core::source_time_from_ns(10'000'000));
   // B gone: A repeating closes the round without B.
   EXPECT_FALSE(a.on_report(report("A", 1.2), at_ms(20)));
   EXPECT_FALSE(a.on_drained());
   auto f3 = a.on_report(report("A", 1.3), at_ms(30));
   ASSERT_TRUE(f3);
-  ASSERT_EQ(f3->bodies.size(), 1u);
-  EXPECT_DOUBLE_EQ(f3->bodies[0].p_world_m.x(), 1.2);
+  ASSERT_EQ(f3->frame.bodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(f3->frame.bodies[0].p_world_m.x(), 1.2);
   // From now on A alone is a complete round.
   auto f4 = a.on_drained();
   ASSERT_TRUE(f4);
-  EXPECT_DOUBLE_EQ(f4->bodies[0].p_world_m.x(), 1.3);
+  EXPECT_DOUBLE_EQ(f4->frame.bodies[0].p_world_m.x(), 1.3);
+}
+
+// Trackers at unequal rates (A at 100 Hz, B at 50 Hz), each update one read that drains the
+// socket, on_idle asked at every idle_deadline before the next update, as the source's timer
+// does: every round is delivered at most settle_after after its last report, never held back
+// until the next update; and `received` is that last report's arrival.
+TEST(VrpnFrameAssembler, IncompleteRoundSettlesInsteadOfWaitingForTheNextUpdate) {
+  FrameAssembler a;                                               // settle_after 2 ms
+  std::vector<std::pair<std::size_t, core::Duration>> delivered;  // (bodies, late by)
+  core::HostTime last{};
+  const auto take = [&](std::optional<AssembledFrame> f, core::HostTime now) {
+    if (!f) return;
+    EXPECT_EQ(f->received, last);
+    delivered.emplace_back(f->frame.bodies.size(), now - last);
+  };
+  for (int n = 0; n < 20; ++n) {
+    const auto t = at_ms(10 * n);
+    last = t;
+    take(a.on_report(report("A", n), t), t);
+    if (n % 2 == 0) take(a.on_report(report("B", n, 1), t), t);
+    take(a.on_drained(), t);
+    while (const auto d = a.idle_deadline()) {
+      if (*d >= at_ms(10 * (n + 1))) break;
+      take(a.on_idle(*d), *d);
+    }
+  }
+  ASSERT_EQ(delivered.size(), 20u);
+  for (std::size_t i = 0; i < delivered.size(); ++i) {
+    EXPECT_EQ(delivered[i].first, i % 2 == 0 ? 2u : 1u) << i;
+    EXPECT_LE(delivered[i].second, milliseconds(2)) << i;
+  }
+}
+
+// The server stalls right after an incomplete round: the round goes out after settle_after with
+// `received` at its report's arrival (honest, so an age check downstream can judge it), and the
+// loss frame follows after lost_after.
+TEST(VrpnFrameAssembler, StallMidRoundDeliversTheRoundWithItsArrivalTime) {
+  AssemblerConfig c;
+  c.lost_after = milliseconds(500);
+  FrameAssembler a(c);
+  (void)a.on_report(report("A", 1), at_ms(0));
+  (void)a.on_report(report("B", 1), at_ms(0));
+  ASSERT_TRUE(a.on_drained());
+  (void)a.on_report(report("A", 2), at_ms(10));
+  EXPECT_FALSE(a.on_drained());  // B missing: settles
+  ASSERT_TRUE(a.idle_deadline());
+  EXPECT_EQ(*a.idle_deadline(), at_ms(12));
+  EXPECT_FALSE(a.on_idle(at_ms(11)));
+  // However late the timer gets to it, the round says when its data arrived.
+  auto round = a.on_idle(at_ms(300));
+  ASSERT_TRUE(round);
+  EXPECT_EQ(round->received, at_ms(10));
+  ASSERT_EQ(round->frame.bodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(round->frame.bodies[0].p_world_m.x(), 2.0);
+  ASSERT_TRUE(a.idle_deadline());
+  EXPECT_EQ(*a.idle_deadline(), at_ms(510));
+  auto lost = a.on_idle(at_ms(510));
+  ASSERT_TRUE(lost);
+  EXPECT_EQ(lost->received, at_ms(510));
+  EXPECT_FALSE(lost->frame.bodies[0].tracked);
 }
 
 TEST(VrpnFrameAssembler, CaptureTimesStrictlyIncrease) {
@@ -139,7 +199,7 @@ TEST(VrpnFrameAssembler, CaptureTimesStrictlyIncrease) {
   auto f1 = a.on_report(report("A", 2), at_ms(5));  // two rounds in one read
   auto f2 = a.flush();
   ASSERT_TRUE(f1 && f2);
-  EXPECT_GT(f2->capture_time, f1->capture_time);
+  EXPECT_GT(f2->frame.capture_time, f1->frame.capture_time);
 }
 
 TEST(VrpnFrameAssembler, SilenceGivesOneLossFrame) {
@@ -155,8 +215,8 @@ TEST(VrpnFrameAssembler, SilenceGivesOneLossFrame) {
   EXPECT_FALSE(a.on_idle(at_ms(99)));
   auto lost = a.on_idle(at_ms(100));
   ASSERT_TRUE(lost);
-  ASSERT_EQ(lost->bodies.size(), 1u);
-  EXPECT_FALSE(lost->bodies[0].tracked);
+  ASSERT_EQ(lost->frame.bodies.size(), 1u);
+  EXPECT_FALSE(lost->frame.bodies[0].tracked);
   EXPECT_FALSE(a.on_idle(at_ms(500)));
   EXPECT_FALSE(a.idle_deadline());
 }
@@ -168,16 +228,16 @@ TEST(VrpnFrameAssembler, FrozenPoseBecomesUntracked) {
   for (int i = 0; i <= 10; ++i) {
     auto f = a.on_report(report("A", 1.0), at_ms(i * 10));
     if (f) {
-      EXPECT_EQ(f->bodies[0].tracked, i <= 5) << i;  // frame i−1 closed by report i
+      EXPECT_EQ(f->frame.bodies[0].tracked, i <= 5) << i;  // frame i−1 closed by report i
     }
   }
   EXPECT_GT(a.frozen_samples(), 0u);
   auto moved = a.on_report(report("A", 1.5), at_ms(200));
   ASSERT_TRUE(moved);
-  EXPECT_FALSE(moved->bodies[0].tracked);
+  EXPECT_FALSE(moved->frame.bodies[0].tracked);
   auto next = a.flush();
   ASSERT_TRUE(next);
-  EXPECT_TRUE(next->bodies[0].tracked);
+  EXPECT_TRUE(next->frame.bodies[0].tracked);
 }
 
 TEST(VrpnFrameAssembler, ResetForgetsTheRoundAndBodiesBounded) {
@@ -194,7 +254,7 @@ TEST(VrpnFrameAssembler, ResetForgetsTheRoundAndBodiesBounded) {
   (void)a.on_report(report("C", 1), at_ms(10));
   auto f = a.flush();
   ASSERT_TRUE(f);
-  EXPECT_EQ(f->bodies[0].name, "C");
+  EXPECT_EQ(f->frame.bodies[0].name, "C");
 }
 
 }  // namespace

@@ -19,7 +19,8 @@ using SteadyClock = std::chrono::steady_clock;
 namespace {
 
 constexpr std::uint64_t kClockHz = 10'000'000;
-constexpr int kRepeatModelsChanged = 3;  // frames carrying the "models changed" bit
+constexpr int kRepeatModelsChanged = 3;     // frames carrying the "models changed" bit
+constexpr int kRepeatBitstreamChanged = 3;  // frames carrying the "bitstream changed" bit
 constexpr std::array<nn::Version, 5> kServedVersions = {
     nn::Version{3, 0}, nn::Version{3, 1}, nn::Version{4, 0}, nn::Version{4, 1}, nn::Version{4, 2}};
 
@@ -88,7 +89,7 @@ std::variant<NatnetServerOptions, std::string> natnet_server_options(
 class NatnetServer::Impl {
  public:
   Impl(const NatnetServerOptions& options, NatnetServerCounters& counters)
-      : options_(options), counters_(counters), version_(options.version) {}
+      : options_(options), counters_(counters) {}
 
   std::optional<std::string> open() {
     asio::error_code ec;
@@ -99,7 +100,20 @@ class NatnetServer::Impl {
       return "cannot listen on " + options_.listen_host + ":" + std::to_string(options_.port) +
              ": " + ec.message();
     }
-    if (!options_.multicast) return std::nullopt;
+    if (!options_.multicast) {
+      // Motive sends unicast frames from its data port, and OptiTrack's NatNet library drops
+      // frames that come from the command port (docs/sources.md "Where unicast frames come from").
+      if (data_.open(udp::v4(), ec); ec) return "data socket: " + ec.message();
+      // A client on this host may bind the same port (mocaplink's does, SO_REUSEADDR): it never
+      // receives on it from us, so sharing it harms nothing.
+      data_.set_option(udp::socket::reuse_address(true), ec);
+      if (data_.bind(udp::endpoint(address, options_.data_port), ec); ec) {
+        return "cannot send from data port " + options_.listen_host + ":" +
+               std::to_string(options_.data_port) + ": " + ec.message() +
+               " (--set data_port=N for another)";
+      }
+      return std::nullopt;
+    }
     if (multicast_.open(udp::v4(), ec); ec) return "multicast socket: " + ec.message();
     group_ = udp::endpoint(asio::ip::make_address_v4(options_.group, ec), options_.data_port);
     multicast_.set_option(asio::ip::multicast::hops(1), ec);
@@ -114,6 +128,12 @@ class NatnetServer::Impl {
   }
 
   std::uint16_t bound_port() const { return command_.local_endpoint().port(); }
+  /// The data port frames leave from: options_.data_port, or the one chosen for 0 (unicast).
+  std::uint16_t data_port() const {
+    asio::error_code ec;
+    const auto local = data_.local_endpoint(ec);
+    return ec ? options_.data_port : local.port();
+  }
 
   void run(FrameProvider provider) {
     provider_ = std::move(provider);
@@ -122,6 +142,7 @@ class NatnetServer::Impl {
     io_.run();
     asio::error_code ignored;
     command_.close(ignored);
+    data_.close(ignored);
     multicast_.close(ignored);
   }
 
@@ -132,8 +153,11 @@ class NatnetServer::Impl {
   }
 
  private:
+  // A unicast client: the endpoint its NAT_CONNECT came from, which is where Motive streams.
   struct Client {
-    SteadyClock::time_point last_heard;
+    SteadyClock::time_point last_heard;  ///< its NAT_CONNECT or last NAT_KEEPALIVE
+    nn::Version version;                 ///< its bitstream ("Bitstream,X.Y" changes only its own)
+    int bitstream_changed_left = 0;      ///< frames still to carry the "bitstream changed" bit
   };
 
   void tick() {
@@ -154,25 +178,50 @@ class NatnetServer::Impl {
       --models_changed_left_;
     }
     ++counters_.frames;
-    const auto packet = nn::encode_frame(f, version_);
     asio::error_code ignored;
     if (options_.multicast) {
-      multicast_.send_to(asio::buffer(packet), group_, 0, ignored);
+      multicast_.send_to(asio::buffer(nn::encode_frame(f, options_.version)), group_, 0, ignored);
       ++counters_.datagrams_sent;
       return;
     }
+    expire_clients();
+    // One encoding per (version, flag) in use: clients may have asked for different bitstreams.
+    std::map<std::pair<nn::Version, bool>, std::vector<std::byte>> packets;
+    for (auto& [endpoint, client] : clients_) {
+      const bool changed = client.bitstream_changed_left > 0;
+      if (changed) --client.bitstream_changed_left;
+      auto [it, fresh] = packets.try_emplace({client.version, changed});
+      if (fresh) {
+        nn::FrameOfData g = f;
+        if (changed) g.params |= nn::kParamBitstreamChanged;
+        it->second = nn::encode_frame(g, client.version);
+      }
+      data_.send_to(asio::buffer(it->second), endpoint, 0, ignored);
+      ++counters_.datagrams_sent;
+    }
+  }
+
+  // A unicast client not heard from (keep-alive) for keepalive_timeout is told so with
+  // NAT_DISCONNECTBYTIMEOUT and no longer served, as Motive does after about 10 s.
+  void expire_clients() {
     const auto now = SteadyClock::now();
+    std::vector<udp::endpoint> expired;
     for (auto it = clients_.begin(); it != clients_.end();) {
       if (now - it->second.last_heard > options_.keepalive_timeout) {
-        ++counters_.clients_timed_out;
+        expired.push_back(it->first);
         it = clients_.erase(it);
-        continue;
+      } else {
+        ++it;
       }
-      command_.send_to(asio::buffer(packet), it->first, 0, ignored);
-      ++counters_.datagrams_sent;
-      ++it;
     }
+    // Counted before the clients are told, so that what they see agrees with the counters.
+    counters_.clients_timed_out += expired.size();
     counters_.clients_now = clients_.size();
+    asio::error_code ignored;
+    for (const auto& endpoint : expired) {
+      command_.send_to(asio::buffer(nn::encode_empty(nn::MessageId::disconnect_by_timeout)),
+                       endpoint, 0, ignored);
+    }
   }
 
   void receive() {
@@ -189,14 +238,15 @@ class NatnetServer::Impl {
     command_.send_to(asio::buffer(packet), from_, 0, ignored);
   }
 
-  nn::ServerInfo server_info() const {
+  // The server info a client gets: its own bitstream version (unicast) or the stream's.
+  nn::ServerInfo server_info(nn::Version version) const {
     nn::ServerInfo info;
     info.sender.name = "mocaplink NatNet emulator";
     info.sender.app_version = {3, 1, 0, 0};
-    info.sender.natnet_version = {version_.major, version_.minor, 0, 0};
+    info.sender.natnet_version = {version.major, version.minor, 0, 0};
     info.has_connection_info = true;
     info.clock_hz = kClockHz;
-    info.data_port = options_.data_port;
+    info.data_port = options_.multicast ? options_.data_port : data_port();
     info.multicast = options_.multicast;
     info.multicast_group = octets(options_.group);
     return info;
@@ -216,16 +266,23 @@ class NatnetServer::Impl {
           ++counters_.malformed_requests;
           return;
         }
+        nn::Version version = options_.version;
         if (!options_.multicast && packet.value().id == 0) {
-          if (clients_.size() >= options_.max_clients && !clients_.count(from_)) {
-            ++counters_.clients_rejected;
-            return;
+          auto it = clients_.find(from_);
+          if (it == clients_.end()) {
+            if (clients_.size() >= options_.max_clients) {
+              ++counters_.clients_rejected;
+              return;
+            }
+            // A new client; a repeated NAT_CONNECT keeps its bitstream and, as with Motive, does
+            // not count as a keep-alive.
+            it = clients_.emplace(from_, Client{SteadyClock::now(), options_.version, 0}).first;
           }
-          clients_[from_].last_heard = SteadyClock::now();
+          version = it->second.version;
           counters_.clients_now = clients_.size();
         }
         ++counters_.clients_connected;
-        return reply(nn::encode_server_info(server_info()));
+        return reply(nn::encode_server_info(server_info(version)));
       }
       case nn::MessageId::keep_alive:
         if (auto it = clients_.find(from_); it != clients_.end()) {
@@ -238,7 +295,7 @@ class NatnetServer::Impl {
         return;
       case nn::MessageId::request_model_def:
         ++counters_.model_requests;
-        return reply(nn::encode_model_definitions(models_.definitions(), version_));
+        return reply(nn::encode_model_definitions(models_.definitions(), version_of(from_)));
       case nn::MessageId::echo_request: {
         auto value = nn::parse_echo_request(payload);
         if (!value) {
@@ -259,17 +316,40 @@ class NatnetServer::Impl {
     }
   }
 
+  // The bitstream `endpoint` is served in: its own (unicast client) or the stream's.
+  nn::Version version_of(const udp::endpoint& endpoint) const {
+    const auto it = clients_.find(endpoint);
+    return it != clients_.end() ? it->second.version : options_.version;
+  }
+
+  static std::vector<std::byte> result_code(std::int32_t result) {
+    std::vector<std::byte> code;
+    for (int i = 0; i < 4; ++i) {
+      code.push_back(static_cast<std::byte>((result >> (8 * i)) & 0xFF));
+    }
+    return nn::encode_packet(nn::MessageId::response, code);
+  }
+
   // §2.3 / §1.2: "Bitstream" (query) and "Bitstream,X.Y[.Z]" (select); nothing else is known.
+  // Unicast: only a connected client is answered (every official client connects first), and
+  // "Bitstream,X.Y" changes that client's bitstream alone, flagging its next frames (§4.7).
+  // Multicast: the one stream is shared, so a change is refused (the samples say the command
+  // needs unicast).
   void on_command(std::span<const std::byte> payload) {
     auto text = nn::parse_string_payload(payload);
     if (!text) {
       ++counters_.malformed_requests;
       return;
     }
+    const auto client = clients_.find(from_);
+    if (!options_.multicast && client == clients_.end()) {
+      ++counters_.requests_refused;
+      return;
+    }
     const std::string& cmd = text.value();
     if (cmd == "Bitstream") {
-      return reply(nn::encode_string_packet(nn::MessageId::response,
-                                            "Bitstream," + version_.to_string() + ".0"));
+      // No NUL: OptiTrack's Python client cannot read one (nn::encode_response_text).
+      return reply(nn::encode_response_text("Bitstream," + version_of(from_).to_string() + ".0"));
     }
     if (cmd.rfind("Bitstream,", 0) == 0) {
       std::string wanted = cmd.substr(10);
@@ -277,12 +357,15 @@ class NatnetServer::Impl {
         wanted = wanted.substr(0, wanted.rfind('.'));
       }
       const auto v = served_version(wanted);
-      std::vector<std::byte> code;
-      const std::int32_t result = v ? 0 : 1;
-      for (int i = 0; i < 4; ++i)
-        code.push_back(static_cast<std::byte>((result >> (8 * i)) & 0xFF));
-      if (v) version_ = *v;
-      return reply(nn::encode_packet(nn::MessageId::response, code));
+      if (!v || options_.multicast) {
+        ++counters_.requests_refused;
+        return reply(result_code(1));
+      }
+      if (client->second.version != *v) {
+        client->second.version = *v;
+        client->second.bitstream_changed_left = kRepeatBitstreamChanged;
+      }
+      return reply(result_code(0));
     }
     reply(nn::encode_empty(nn::MessageId::unrecognized_request));
   }
@@ -291,6 +374,7 @@ class NatnetServer::Impl {
   NatnetServerCounters& counters_;
   asio::io_context io_;  // first: destroyed after the sockets and timers that use it
   udp::socket command_{io_};
+  udp::socket data_{io_};  // unicast: frames leave from the data port
   udp::socket multicast_{io_};
   udp::endpoint group_;
   udp::endpoint from_;
@@ -300,7 +384,6 @@ class NatnetServer::Impl {
   std::uint64_t ticks_ = 0;
   nn::ServedModels models_;
   int models_changed_left_ = 0;
-  nn::Version version_;
   std::map<udp::endpoint, Client> clients_;
 };
 
@@ -321,6 +404,7 @@ std::optional<std::string> NatnetServer::start(FrameProvider provider) {
     return err;
   }
   port_ = impl_->bound_port();
+  data_port_ = impl_->data_port();
   thread_ = std::thread([this, p = std::move(provider)]() mutable { impl_->run(std::move(p)); });
   return std::nullopt;
 }
@@ -341,6 +425,7 @@ std::string NatnetServer::summary() const {
   return std::to_string(c.frames.load()) + " frames, " +
          std::to_string(c.clients_connected.load()) + " clients connected, " +
          std::to_string(c.clients_timed_out.load()) + " timed out, " +
+         std::to_string(c.requests_refused.load()) + " requests refused, " +
          std::to_string(c.malformed_requests.load()) + " malformed requests";
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -22,7 +23,8 @@ namespace {
 
 // Frame numbers this far below the last one mean the server restarted its count, not a repeat.
 constexpr std::int64_t kRestartJump = 1000;
-constexpr auto kRevalidateEvery = std::chrono::seconds(1);
+// Least time between two re-reads of the server info: a lost reply is asked for again this soon.
+constexpr auto kRevalidateEvery = std::chrono::milliseconds(250);
 
 std::string ipv4_text(const std::array<std::uint8_t, 4>& a) {
   return std::to_string(a[0]) + "." + std::to_string(a[1]) + "." + std::to_string(a[2]) + "." +
@@ -62,6 +64,10 @@ class NatnetSource::Session {
     std::vector<std::byte> buffer = std::vector<std::byte>(nn::kMaxDatagramBytes);
   };
 
+  // Where a datagram was read: the data socket, or the command socket from the server's command
+  // port or its data port.
+  enum class Origin { data_socket, command_port, data_port };
+
   udp::endpoint local_endpoint(std::uint16_t port) const {
     asio::error_code ec;
     const auto address = opts_.target.local.empty()
@@ -88,6 +94,7 @@ class NatnetSource::Session {
             return fail("resolve " + opts_.target.host + ": " + ec.message(), false);
           }
           server_ = results.begin()->endpoint();
+          server_data_port_ = opts_.target.data_port.value_or(nn::kDefaultDataPort);
           asio::error_code oec;
           cmd_.socket.open(udp::v4(), oec);
           if (!oec) cmd_.socket.bind(local_endpoint(0), oec);
@@ -127,17 +134,31 @@ class NatnetSource::Session {
                                     // trying.
                                     return receive(r);
                                   }
-                                  // The command socket hears only the server: its port may have
-                                  // belonged to another
-                                  // program's client a moment ago, whose unicast server still
-                                  // streams to it.
-                                  if (&r == &cmd_ && server_ && r.from != *server_) {
-                                    ++owner_.natnet_counters_.foreign_datagrams;
+                                  const auto bytes = std::span<const std::byte>(r.buffer.data(), n);
+                                  if (&r != &cmd_) {
+                                    on_datagram(bytes, Origin::data_socket);
+                                  } else if (const auto origin = command_socket_origin(r.from)) {
+                                    on_datagram(bytes, *origin);
                                   } else {
-                                    on_datagram(std::span<const std::byte>(r.buffer.data(), n));
+                                    // The command socket hears only the server: its port may have
+                                    // belonged to another program's client a moment ago, whose
+                                    // unicast server still streams to it.
+                                    ++owner_.natnet_counters_.foreign_datagrams;
                                   }
                                   if (gen == generation_) receive(r);
                                 });
+  }
+
+  // Where a datagram on the command socket comes from, if from the server: its command port
+  // (replies) or its data port (Motive's unicast frames, docs/sources.md "Where unicast frames
+  // come from"); any other sender is foreign.
+  std::optional<Origin> command_socket_origin(const udp::endpoint& from) const {
+    if (!server_) return std::nullopt;
+    if (from == *server_) return Origin::command_port;
+    if (from.address() == server_->address() && from.port() == server_data_port_) {
+      return Origin::data_port;
+    }
+    return std::nullopt;
   }
 
   void malformed(const std::string& what, const wire::ParseError& e) {
@@ -146,7 +167,7 @@ class NatnetSource::Session {
                            e.reason);
   }
 
-  void on_datagram(std::span<const std::byte> bytes) {
+  void on_datagram(std::span<const std::byte> bytes, Origin origin) {
     ++owner_.natnet_counters_.packets;
     auto packet = nn::split_packet(bytes);
     if (!packet) return malformed("datagram", packet.error());
@@ -158,10 +179,54 @@ class NatnetSource::Session {
       case nn::MessageId::model_def:
         return on_model_definitions(payload);
       case nn::MessageId::frame_of_data:
+        // Motive sends unicast frames from its data port; OptiTrack's library drops frames from
+        // the command port. mocaplink still reads them (the endpoint is the server's own, that
+        // answers the connect), counted.
+        if (origin == Origin::command_port) ++owner_.natnet_counters_.frames_from_command_port;
         return on_frame(payload);
+      case nn::MessageId::response:
+        return on_response(payload);
+      case nn::MessageId::disconnect_by_timeout:
+        // Motive ends a unicast session it heard no keep-alive for (about 10 s): start again.
+        ++owner_.natnet_counters_.disconnects_by_server;
+        return fail(
+            "Motive ended the unicast session (NAT_DISCONNECTBYTIMEOUT: no keep-alive heard)",
+            false);
       default:
-        return;  // responses, message strings, echoes: nothing we asked for
+        return;  // message strings, echoes: nothing we asked for
     }
+  }
+
+  // The reply to our "Bitstream" query (NatNet 4 servers, §1.2): "Bitstream,X.Y[.Z]". Result
+  // codes and other strings are not ours to read.
+  void on_response(std::span<const std::byte> payload) {
+    if (!info_ || payload.size() == 4) return;
+    // With or without a NUL: Motive seems to send none (nn::encode_response_text).
+    const std::string text = nn::parse_response_text(payload);
+    if (text.rfind("Bitstream,", 0) != 0) return;
+    unsigned major = 0;
+    unsigned minor = 0;
+    if (std::sscanf(text.c_str() + 10, "%u.%u", &major, &minor) != 2 || major > 255 ||
+        minor > 255) {
+      return;
+    }
+    const nn::Version v{static_cast<std::uint8_t>(major), static_cast<std::uint8_t>(minor)};
+    if (v == info_->version()) return;
+    if (!nn::supported(v)) {
+      return fail(
+          "Motive streams NatNet bitstream " + v.to_string() + "; mocaplink reads 2.5 up to 4.x",
+          false);
+    }
+    info_->sender.natnet_version = {v.major, v.minor, 0, 0};
+    change_version();
+  }
+
+  // The bitstream changed under a live session: frames of the new version are not read with the
+  // old model table, so the table is dropped and asked for again at once.
+  void change_version() {
+    ++owner_.natnet_counters_.bitstream_changes;
+    table_.reset();
+    request_models(true);
   }
 
   void on_server_info(std::span<const std::byte> payload) {
@@ -177,10 +242,7 @@ class NatnetSource::Session {
     const bool first = !info_;
     const bool changed = info_ && info_->version() != v;
     info_ = info;
-    if (changed) {
-      table_.reset();  // frames of the new version are not read with the old model table
-      request_models(true);
-    }
+    if (changed) change_version();
     if (!first) return;
     connect_timer_.cancel();
     backoff_.reset();
@@ -190,6 +252,7 @@ class NatnetSource::Session {
                      : opts_.target.transport == NatnetTransport::multicast;
     const std::uint16_t data_port = opts_.target.data_port.value_or(
         info.has_connection_info ? info.data_port : nn::kDefaultDataPort);
+    server_data_port_ = data_port;
     const std::string group = opts_.target.multicast_group.value_or(
         ipv4_text(info.has_connection_info ? info.multicast_group : nn::kDefaultMulticastGroup));
     if (auto err = open_data_socket(data_port, group)) return fail(*err, false);
@@ -249,7 +312,10 @@ class NatnetSource::Session {
   void on_model_definitions(std::span<const std::byte> payload) {
     if (!info_) return;
     auto defs = nn::parse_model_definitions(payload, info_->version());
-    if (!defs) return malformed("model definitions", defs.error());
+    if (!defs) {
+      revalidate();  // written in another bitstream (4.1 → 4.2 changes only these)?
+      return malformed("model definitions", defs.error());
+    }
     table_ = nn::body_table(defs.value());
     ++owner_.natnet_counters_.model_reloads;
     if (!table_->ambiguous.empty()) {
@@ -262,7 +328,12 @@ class NatnetSource::Session {
   void on_frame(std::span<const std::byte> payload) {
     if (!info_) return;
     auto parsed = nn::parse_frame(payload, info_->version());
-    if (!parsed) return malformed("frame", parsed.error());
+    if (!parsed) {
+      // Frames that stop decoding may be another bitstream (asked for by this client's host, or
+      // a server that changed it without the flag): ask again now, not after silence_timeout.
+      revalidate();
+      return malformed("frame", parsed.error());
+    }
     const nn::FrameOfData& f = parsed.value();
     arm_silence_timer();
     if ((f.params & nn::kParamModelsChanged) != 0) request_models(false);
@@ -300,15 +371,20 @@ class NatnetSource::Session {
   }
 
   // §4.7: the bitstream may have changed (or Motive switched to Edit mode): ask for the server
-  // info again, at most once a second; a new version reloads the model definitions.
+  // info again and, from a NatNet 4 server, the "Bitstream" in force for this client, at most
+  // every kRevalidateEvery; a new version reloads the model definitions.
   void revalidate() {
     const auto t = SteadyClock::now();
     if (t - last_revalidate_ < kRevalidateEvery) return;
     last_revalidate_ = t;
+    ++owner_.natnet_counters_.revalidations;
     nn::ConnectRequest req;
     req.sender.name = "mocaplink";
     req.sender.natnet_version = {4, 1, 0, 0};
     send(nn::encode_connect(req));
+    if (info_ && info_->version().at_least(4, 0)) {
+      send(nn::encode_string_packet(nn::MessageId::request, "Bitstream"));
+    }
   }
 
   void keep_alive_tick() {
@@ -376,6 +452,7 @@ class NatnetSource::Session {
   asio::steady_timer keep_alive_timer_{io_};
   asio::steady_timer retry_timer_{io_};
   std::optional<udp::endpoint> server_;
+  std::uint16_t server_data_port_ = nn::kDefaultDataPort;  ///< its frames' source port (unicast)
   std::optional<nn::ServerInfo> info_;
   std::optional<nn::BodyTable> table_;
   bool multicast_ = true;

@@ -28,9 +28,12 @@ config::ValueOrError<ReplayOptions> parse_replay_options(const config::UrlParts&
 }
 
 core::Duration ReplaySchedule::due(core::SourceTime capture) {
-  if (!first_capture_) first_capture_ = capture;
+  if (!pass_started_) {
+    first_capture_ = capture;
+    pass_started_ = true;
+  }
   if (speed_ <= 0.0) return core::Duration{0};
-  const double since_first_ns = static_cast<double>((capture - *first_capture_).count()) / speed_;
+  const double since_first_ns = static_cast<double>((capture - first_capture_).count()) / speed_;
   core::Duration due = pass_start_ + core::Duration{std::llround(std::max(0.0, since_first_ns))};
   if (due < last_due_) due = last_due_;  // never schedule backwards
   last_due_ = due;
@@ -38,7 +41,7 @@ core::Duration ReplaySchedule::due(core::SourceTime capture) {
 }
 
 void ReplaySchedule::next_pass() {
-  first_capture_.reset();
+  pass_started_ = false;
   pass_start_ = last_due_;
 }
 

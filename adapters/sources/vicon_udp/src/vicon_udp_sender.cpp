@@ -24,10 +24,14 @@ config::ValueOrError<ViconUdpSenderOptions> vicon_udp_sender_options(
     std::uint64_t n = 0;
     std::string error;
     if (key == "rotation") {
-      if (value != "xyz" && value != "zyx") error = "rotation must be xyz or zyx";
+      if (value != "xyz" && value != "zyx") {
+        error = "rotation must be xyz or zyx, got " + config::quote(value);
+      }
       o.rotation = value == "zyx" ? vu::EulerOrder::zyx : vu::EulerOrder::xyz;
     } else if (key == "occluded") {
-      if (value != "omit" && value != "zeros") error = "occluded must be omit or zeros";
+      if (value != "omit" && value != "zeros") {
+        error = "occluded must be omit or zeros, got " + config::quote(value);
+      }
       o.occluded_as_zeros = value == "zeros";
     } else if (key == "frame_step") {
       error = config::read_count_option(key, value, 1, 100, n);
@@ -38,8 +42,16 @@ config::ValueOrError<ViconUdpSenderOptions> vicon_udp_sender_options(
     } else if (key == "per_datagram") {
       error = config::read_count_option(key, value, 1, 255, n);
       o.per_datagram = static_cast<std::size_t>(n);
+    } else if (key == "block_size") {
+      // One object item must fit (5 + 75 bytes), and a datagram is at most 65507 bytes.
+      error = config::read_count_option(key, value, 0, vu::kMaxDatagramBytes, n);
+      if (error.empty() && n != 0 && vu::objects_per_block(static_cast<std::size_t>(n)) == 0) {
+        error = "block_size must be 0 (no padding) or 80 to 65507 (Tracker: 256, 512, 1024), got " +
+                config::quote(value);
+      }
+      o.block_bytes = static_cast<std::size_t>(n);
     }
-    if (!error.empty()) return Result::failure(error + ", got " + config::quote(value));
+    if (!error.empty()) return Result::failure(error);  // each message ends with ", got …"
   }
   return o;
 }
@@ -116,11 +128,15 @@ class ViconUdpSender::Impl {
     }
     const std::uint32_t number = next_frame_;
     next_frame_ += options_.frame_step;  // wraps at 2^32 as the Vicon counter would
+    // As many objects per datagram as the block holds; the rest in further blocks with the same
+    // frame number.
+    const std::size_t per_datagram =
+        std::min(options_.per_datagram, vu::objects_per_block(options_.block_bytes));
     std::size_t first = 0;
     do {
-      const std::size_t n = std::min(options_.per_datagram, objects.size() - first);
-      const auto datagram =
-          vu::encode_datagram(number, std::span<const vu::Object>(objects.data() + first, n));
+      const std::size_t n = std::min(per_datagram, objects.size() - first);
+      const auto datagram = vu::encode_datagram(
+          number, std::span<const vu::Object>(objects.data() + first, n), options_.block_bytes);
       asio::error_code ec;
       socket_.send_to(asio::buffer(datagram), to_, 0, ec);
       ++(ec ? counters_.send_errors : counters_.datagrams);

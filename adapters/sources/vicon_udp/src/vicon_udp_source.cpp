@@ -74,6 +74,13 @@ class ViconUdpSource::Receiver {
     owner_.last_error_ = std::move(error);
   }
 
+  /// A datagram dropped unread: its reason is the source's last error and last rejection
+  /// (bodies, record, the dashboard and the log show it with the count).
+  void reject(const std::string& reason) {
+    set_error(reason);
+    owner_.counters_.last_rejection.set(reason);
+  }
+
   void receive() {
     socket_.async_receive_from(asio::buffer(buffer_), sender_,
                                [this](const asio::error_code& ec, std::size_t n) {
@@ -85,22 +92,27 @@ class ViconUdpSource::Receiver {
 
   void on_datagram(std::size_t n) {
     if (from_ && sender_.address() != *from_) {
+      // The reason first, then the count: a reader that sees the count sees why.
+      reject("datagram from " + sender_.address().to_string() + ", not " + owner_.options_.from +
+             " (from=)");
       ++owner_.udp_counters_.foreign;
-      set_error("datagram from " + sender_.address().to_string() + ", not " + owner_.options_.from);
+      ++owner_.counters_.refused;
       return;
     }
     auto out = stream_.on_datagram(std::span<const std::byte>(buffer_.data(), n), io::host_now());
     copy_counters();
     if (!out) {
+      reject("malformed datagram at byte " + std::to_string(out.error().offset) + ": " +
+             out.error().reason);
       ++owner_.counters_.malformed;
-      set_error("malformed datagram at byte " + std::to_string(out.error().offset) + ": " +
-                out.error().reason);
       return;
     }
     if (!live_) {
       live_ = true;
-      if (on_state_)
-        on_state_(SourceState::connected, "datagrams from " + sender_.address().to_string());
+      if (on_state_) {
+        on_state_(SourceState::connected, "datagrams of " + std::to_string(n) + " bytes from " +
+                                              sender_.address().to_string());
+      }
     }
     watch_silence();
     deliver(std::move(out).value());
@@ -128,7 +140,7 @@ class ViconUdpSource::Receiver {
   void copy_counters() {
     using S = vu::StreamCounters;
     using U = ViconUdpCounters;
-    static constexpr std::array<std::pair<std::uint64_t S::*, std::atomic<std::uint64_t> U::*>, 8>
+    static constexpr std::array<std::pair<std::uint64_t S::*, std::atomic<std::uint64_t> U::*>, 9>
         kCopied{{{&S::datagrams, &U::datagrams},
                  {&S::late, &U::late},
                  {&S::wraps, &U::wraps},
@@ -136,7 +148,8 @@ class ViconUdpSource::Receiver {
                  {&S::gaps, &U::gaps},
                  {&S::split_frames, &U::split_frames},
                  {&S::unknown_items, &U::unknown_items},
-                 {&S::untracked, &U::untracked}}};
+                 {&S::untracked, &U::untracked},
+                 {&S::padded, &U::padded}}};
     for (const auto& [from, to] : kCopied) owner_.udp_counters_.*to = stream_.counters().*from;
   }
 

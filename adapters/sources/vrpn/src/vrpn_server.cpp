@@ -1,23 +1,28 @@
 #include "mocaplink/sources/vrpn_server.hpp"
 
 #include <array>
+#include <cctype>
+#include <charconv>
 #include <chrono>
 #include <deque>
 #include <map>
 #include <set>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include <asio.hpp>
 
 #include "mocaplink/sources/emulator_support.hpp"
+#include "mocaplink/wire/vrpn_client.hpp"
 #include "mocaplink/wire/vrpn_protocol.hpp"
 
 namespace mocaplink::sources {
 
 namespace vr = wire::vrpn;
 using asio::ip::tcp;
+using asio::ip::udp;
 using SteadyClock = std::chrono::steady_clock;
 
 namespace {
@@ -40,12 +45,18 @@ constexpr std::array<std::string_view, 18> kTypes = {
     "vrpn_Tracker set_update_rate",
     "vrpn_Tracker Reset_Origin",
     "vrpn_Base text_message",
-    "vrpn_Base ping_message",
-    "vrpn_Base pong_message",
+    vr::kPingType,
+    vr::kPongType,
 };
 constexpr std::int32_t kPosQuatId = 4;
 constexpr std::int32_t kVelocityId = 5;
+constexpr std::int32_t kPongId = 17;
+static_assert(kTypes[kPosQuatId] == vr::kPosQuatType && kTypes[kVelocityId] == vr::kVelocityType &&
+              kTypes[kPongId] == vr::kPongType);
 constexpr std::string_view kControlSender = "VRPN Control";
+/// A body's velocity is the difference from its previous report at most this old (a longer gap:
+/// zero velocity, as a server that has just (re)acquired it).
+constexpr double kMaxVelocityGapS = 0.5;
 
 std::int64_t wall_clock_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(
@@ -62,6 +73,25 @@ vr::Timeval wall_clock() {
   return timeval_of(wall_clock_us());
 }
 
+/// The TCP port a VRPN client's connection request ("lob") asks to be called back at: the
+/// datagram is "HOST PORT" and a NUL (vrpn_udp_request_lob_packet). As
+/// server_check_for_incoming_connections, HOST must be letters, digits and dots and PORT at least
+/// 1024; nullopt otherwise.
+std::optional<std::uint16_t> parse_lob(std::string_view datagram) {
+  datagram = datagram.substr(0, datagram.find('\0'));
+  const auto space = datagram.find(' ');
+  if (space == std::string_view::npos || space == 0) return std::nullopt;
+  for (const char c : datagram.substr(0, space)) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.') return std::nullopt;
+  }
+  const auto digits = datagram.substr(space + 1);
+  unsigned port = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), port);
+  if (ec != std::errc{} || end != digits.data() + digits.size()) return std::nullopt;
+  if (port < 1024 || port > 65535) return std::nullopt;
+  return static_cast<std::uint16_t>(port);
+}
+
 }  // namespace
 
 class VrpnServer::Impl {
@@ -70,12 +100,21 @@ class VrpnServer::Impl {
       : options_(options), counters_(counters), provider_(std::move(provider)) {}
 
   std::optional<std::string> open() {
-    return listen_tcp(acceptor_, options_.listen_host, options_.port);
+    if (auto err = listen_tcp(acceptor_, options_.listen_host, options_.port)) return err;
+    // The UDP port of the same number, where VRPN clients without tcp:// in their address ask to
+    // be called back (vrpn.md §1.2). A port taken by someone else only costs that way in.
+    asio::error_code ec;
+    const udp::endpoint at(acceptor_.local_endpoint().address(), local_port());
+    lob_.open(at.protocol(), ec);
+    if (!ec) lob_.bind(at, ec);
+    if (ec) lob_.close(ec);
+    return std::nullopt;
   }
   std::uint16_t local_port() const { return acceptor_.local_endpoint().port(); }
 
   void run() {
     accept();
+    if (lob_.is_open()) receive_lob();
     if (provider_) {
       schedule_.emplace(options_.rate_hz, SteadyClock::now());
       next_tick();
@@ -85,6 +124,7 @@ class VrpnServer::Impl {
     clients_.clear();
     asio::error_code ignored;
     acceptor_.close(ignored);
+    lob_.close(ignored);
   }
 
   void stop() { io_.stop(); }
@@ -105,6 +145,10 @@ class VrpnServer::Impl {
     bool sending = false;
     bool gone = false;
     std::uint32_t sequence = 0;
+    // The client's own sender and type ids (it describes them after its cookie, as every VRPN
+    // endpoint does), kept to recognise its pings; at most wire::vrpn::kMaxIds each.
+    std::unordered_map<std::int32_t, std::string> remote_senders;
+    std::unordered_map<std::int32_t, std::string> remote_types;
   };
   using ClientPtr = std::shared_ptr<Client>;
 
@@ -148,22 +192,64 @@ class VrpnServer::Impl {
     return timeval_of(anchor_->second + (capture_us - anchor_->first));
   }
 
+  // A body's velocity as a tracker server derives it: the difference from its previous report
+  // (position over the capture-time step; vel_quat = q · q_prev⁻¹ over the same step, the rotation
+  // vrpn_Tracker_Filter applies to predict). Zero, identity and one frame period without one.
+  struct Motion {
+    Eigen::Vector3d v_m_s = Eigen::Vector3d::Zero();
+    Eigen::Quaterniond vel_quat = Eigen::Quaterniond::Identity();
+    double dt_s = 0.0;
+  };
+  Motion motion(const core::BodySample& body, core::SourceTime capture) {
+    Motion m;
+    m.dt_s = 1.0 / options_.rate_hz;
+    auto [it, first] =
+        previous_.try_emplace(body.name, Previous{body.p_world_m, body.q_world_body, capture});
+    if (!first) {
+      const double dt = std::chrono::duration<double>(capture - it->second.capture).count();
+      if (dt > 0.0 && dt <= kMaxVelocityGapS) {
+        m.v_m_s = (body.p_world_m - it->second.p_m) / dt;
+        m.vel_quat = (body.q_world_body * it->second.q.conjugate()).normalized();
+        if (m.vel_quat.w() < 0) m.vel_quat.coeffs() = -m.vel_quat.coeffs();
+        m.dt_s = dt;
+      }
+      it->second = Previous{body.p_world_m, body.q_world_body, capture};
+    }
+    return m;
+  }
+
+  // A frame's reports go to each client in one write, as a VRPN server sends what a mainloop
+  // packed (vrpn_Endpoint::send_pending_reports), so a client reads them together.
   void produce(const core::MocapFrame& frame) {
     ++counters_.frames;
     const auto now = stamp(frame);
-    const double dt = 1.0 / options_.rate_hz;
+    struct Out {
+      std::int32_t id;
+      std::vector<std::byte> pose, velocity;
+    };
+    std::vector<Out> reports;
     for (const auto& body : frame.bodies) {
       if (!body.tracked || body.name.empty() || body.name.size() >= vr::kMaxNameBytes) continue;
       const std::int32_t id = sender_id(body.name);
-      const auto pose = vr::encode_pos_quat(vr::PosQuat{0, body.p_world_m, body.q_world_body});
-      const auto velocity = vr::encode_velocity(0, Eigen::Vector3d::Zero(), dt);
-      const std::vector<ClientPtr> all(clients_.begin(), clients_.end());
-      for (const auto& c : all) {
-        if (!c->ready) continue;
-        send(c, vr::encode_message(now, id, kPosQuatId, pose, c->sequence++));
-        send(c, vr::encode_message(now, id, kVelocityId, velocity, c->sequence++));
-        ++counters_.reports;
+      const Motion m = motion(body, frame.capture_time);
+      reports.push_back(Out{id,
+                            vr::encode_pos_quat(vr::PosQuat{0, body.p_world_m, body.q_world_body}),
+                            vr::encode_velocity(0, m.v_m_s, m.vel_quat, m.dt_s)});
+    }
+    if (reports.empty()) return;
+    const std::vector<ClientPtr> all(clients_.begin(), clients_.end());
+    for (const auto& c : all) {
+      if (!c->ready) continue;
+      std::vector<std::byte> bytes;
+      for (const auto& r : reports) {
+        for (const auto& [type, payload] :
+             {std::pair{kPosQuatId, &r.pose}, std::pair{kVelocityId, &r.velocity}}) {
+          const auto message = vr::encode_message(now, r.id, type, *payload, c->sequence++);
+          bytes.insert(bytes.end(), message.begin(), message.end());
+        }
       }
+      send(c, std::move(bytes));
+      counters_.reports += reports.size();
     }
   }
 
@@ -172,6 +258,38 @@ class VrpnServer::Impl {
       if (ec == asio::error::operation_aborted) return;
       if (!ec) admit(std::move(socket));
       accept();
+    });
+  }
+
+  // A connection request: connect to the port it names, at the address it came from (VRPN
+  // connects to the host the datagram names; the source address is the same for a client on one
+  // interface, and no datagram makes us connect to a third host), then serve it as an accepted
+  // client. A request for a callback already under way is ignored (the client repeats it every
+  // 2 s until called back).
+  void receive_lob() {
+    lob_.async_receive_from(
+        asio::buffer(lob_buffer_), lob_from_, [this](const asio::error_code& ec, std::size_t n) {
+          if (ec == asio::error::operation_aborted) return;
+          if (!ec) {
+            const auto port = parse_lob(std::string_view(lob_buffer_.data(), n));
+            if (!port) {
+              ++counters_.bad_lobs;
+            } else {
+              call_back(tcp::endpoint(lob_from_.address(), *port));
+            }
+          }
+          receive_lob();
+        });
+  }
+
+  void call_back(const tcp::endpoint& to) {
+    if (!calling_.insert(to).second) return;
+    auto socket = std::make_shared<tcp::socket>(io_);
+    socket->async_connect(to, [this, socket, to](const asio::error_code& ec) {
+      calling_.erase(to);
+      if (ec) return;
+      ++counters_.lobs_answered;
+      admit(std::move(*socket));
     });
   }
 
@@ -216,18 +334,48 @@ class VrpnServer::Impl {
   }
 
   void read_header(const ClientPtr& c) {
-    asio::async_read(c->socket, asio::buffer(c->header),
-                     [this, c](const asio::error_code& ec, std::size_t) {
-                       if (ec || c->gone) return drop(c);
-                       auto header = vr::parse_header(c->header);
-                       if (!header) return drop(c);
-                       c->payload.resize(header.value().padded_payload_bytes());
-                       asio::async_read(c->socket, asio::buffer(c->payload),
-                                        [this, c](const asio::error_code& pec, std::size_t) {
-                                          if (pec || c->gone) return drop(c);
-                                          read_header(c);  // client messages are ignored
-                                        });
-                     });
+    asio::async_read(
+        c->socket, asio::buffer(c->header), [this, c](const asio::error_code& ec, std::size_t) {
+          if (ec || c->gone) return drop(c);
+          auto header = vr::parse_header(c->header);
+          if (!header) return drop(c);
+          c->payload.resize(header.value().padded_payload_bytes());
+          asio::async_read(c->socket, asio::buffer(c->payload),
+                           [this, c, h = header.value()](const asio::error_code& pec, std::size_t) {
+                             if (pec || c->gone) return drop(c);
+                             on_client_message(c, h);
+                             read_header(c);
+                           });
+        });
+  }
+
+  // What a VRPN server does with a client's messages, as far as a tracker client needs: its
+  // sender and type descriptions are remembered, and a "vrpn_Base ping_message" from a sender
+  // named like one of our trackers is answered at once with a "vrpn_Base pong_message" from that
+  // tracker (vrpn_BaseClassUnique::handle_ping, registered for the device's sender id). Without
+  // the pong a VRPN client warns "No response from server" after 3 s and gives the server up as
+  // dead after 10 s. Everything else (UDP and log descriptions, other messages) is ignored.
+  void on_client_message(const ClientPtr& c, const vr::Header& header) {
+    const std::span<const std::byte> payload(c->payload.data(), header.payload_bytes());
+    if (header.type == vr::kSenderDescription || header.type == vr::kTypeDescription) {
+      auto name = vr::parse_description(payload);
+      auto& table = header.type == vr::kSenderDescription ? c->remote_senders : c->remote_types;
+      if (name && (table.size() < vr::kMaxIds || table.contains(header.sender))) {
+        table[header.sender] = std::move(name).value();
+      }
+      return;
+    }
+    if (header.type < 0) return;
+    const auto type = c->remote_types.find(header.type);
+    const auto sender = c->remote_senders.find(header.sender);
+    if (type == c->remote_types.end() || type->second != vr::kPingType ||
+        sender == c->remote_senders.end() || sender->second == kControlSender) {
+      return;
+    }
+    const auto ours = senders_.find(sender->second);
+    if (ours == senders_.end()) return;  // no such tracker here: a VRPN server has no handler
+    ++counters_.pongs;
+    send(c, vr::encode_message(wall_clock(), ours->second, kPongId, {}, c->sequence++));
   }
 
   void send(const ClientPtr& c, std::vector<std::byte> message) {
@@ -271,7 +419,17 @@ class VrpnServer::Impl {
   FrameProvider provider_;
   std::optional<TickSchedule> schedule_;
   std::optional<std::pair<std::int64_t, std::int64_t>> anchor_;  // (capture µs, wall-clock µs)
+  udp::socket lob_{io_};
+  std::array<char, 200> lob_buffer_{};
+  udp::endpoint lob_from_;
+  std::set<tcp::endpoint> calling_;  // callbacks being connected
   std::map<std::string, std::int32_t> senders_;
+  struct Previous {
+    Eigen::Vector3d p_m;
+    Eigen::Quaterniond q;
+    core::SourceTime capture;
+  };
+  std::map<std::string, Previous> previous_;  // each body's last report (velocity)
   std::vector<std::string> sender_order_{std::string(kControlSender)};
 };
 
@@ -299,7 +457,9 @@ std::string VrpnServer::summary() const {
   return std::to_string(c.frames.load()) + " frames, " + std::to_string(c.clients_accepted.load()) +
          " clients, " + std::to_string(c.reports.load()) + " reports, " +
          std::to_string(c.bad_cookies.load()) + " bad cookies, " +
-         std::to_string(c.slow_clients.load()) + " slow clients";
+         std::to_string(c.slow_clients.load()) + " slow clients, " +
+         std::to_string(c.pongs.load()) + " pings answered, " +
+         std::to_string(c.lobs_answered.load()) + " UDP connection requests answered";
 }
 
 }  // namespace mocaplink::sources

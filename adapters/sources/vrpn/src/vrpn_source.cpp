@@ -171,7 +171,10 @@ class VrpnSource::Session {
       report_state(SourceState::connected, "senders: " + join(owner_.trackers()));
     }
     asio::error_code ignored;
-    if (link->socket.available(ignored) == 0) deliver(assembler_.on_drained());
+    if (link->socket.available(ignored) == 0) {
+      deliver(assembler_.on_drained());
+      watch_idle();  // an incomplete round settles (FrameAssembler::on_drained)
+    }
     return true;
   }
 
@@ -225,10 +228,12 @@ class VrpnSource::Session {
     });
   }
 
-  void deliver(std::optional<core::MocapFrame> frame) {
-    if (!frame) return;
+  // `received` is when the frame's data arrived, not when its round was closed: a round closed
+  // late is judged by its age downstream (the daemon skips and counts one too old to send).
+  void deliver(std::optional<vr::AssembledFrame> assembled) {
+    if (!assembled) return;
     ++owner_.counters_.frames;
-    if (on_frame_) on_frame_(std::move(*frame), io::host_now());
+    if (on_frame_) on_frame_(std::move(assembled->frame), assembled->received);
   }
 
   // Ends `link` and schedules the next attempt. `malformed`: the server's bytes were at fault.

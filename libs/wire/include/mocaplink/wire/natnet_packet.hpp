@@ -134,8 +134,15 @@ struct ServerInfo {
 
 /// NAT_REQUEST / NAT_MESSAGESTRING payload: one NUL-terminated string filling the payload.
 [[nodiscard]] Result<std::string> parse_string_payload(std::span<const std::byte> payload);
-/// A packet whose payload is `text` and its NUL (NAT_REQUEST, NAT_RESPONSE as text, …).
+/// A packet whose payload is `text` and its NUL (NAT_REQUEST, NAT_MESSAGESTRING).
 [[nodiscard]] std::vector<std::byte> encode_string_packet(MessageId id, const std::string& text);
+/// A NAT_RESPONSE's text ("Bitstream,4.1.0"), NUL-terminated or not: the text up to the first NUL,
+/// or the whole payload when it has none.
+[[nodiscard]] std::string parse_response_text(std::span<const std::byte> payload);
+/// NAT_RESPONSE with `text` and no NUL, as Motive seems to send it: OptiTrack's own Python client
+/// (NatNet SDK 4.1 to 2025) reads the rest of the datagram as the reply and fails on a NUL in it
+/// ("int() ... '0\x00'"), which it would against every Motive if Motive sent one.
+[[nodiscard]] std::vector<std::byte> encode_response_text(const std::string& text);
 
 struct EchoResponse {
   std::uint64_t client_value = 0;

@@ -45,6 +45,7 @@ struct StreamConfig {
 struct StreamCounters {
   std::uint64_t datagrams = 0;
   std::uint64_t malformed = 0;
+  std::uint64_t padded = 0;  ///< datagrams with zero bytes after the items (Tracker's blocks)
   std::uint64_t late = 0;
   std::uint64_t wraps = 0;
   std::uint64_t restarts = 0;

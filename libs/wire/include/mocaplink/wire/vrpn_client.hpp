@@ -9,8 +9,15 @@
 // FrameAssembler turns reports into frames, since VRPN has no frame number and no tracking flag:
 //   - A round is the reports since the last frame. A report of a (tracker, sensor) already in the
 //     round closes it (the next update has begun); so does a drained socket once the round holds
-//     every key of the previous round. Frames are numbered 1, 2, … by the assembler (host-time
-//     frames; MocapFrame::frame_step = 0 tells the Station that gaps mean nothing).
+//     every key of the previous round. A round that lacks some of them when the socket drains (a
+//     tracker reporting at a lower rate, a body no longer reported, a server stalled mid-round)
+//     is closed `settle_after` after its last report if nothing more came: not held back until
+//     the next update (one report period), nor until `lost_after`. Frames are numbered 1, 2, …
+//     by the assembler (host-time frames; MocapFrame::frame_step = 0 tells the Station that gaps
+//     mean nothing).
+//   - Each frame comes with `received`: the host arrival time of its round's last report (for
+//     the loss frame, the time it was made), so whoever judges a frame's age (the daemon's
+//     core::LateFrames) sees how old its data is, however late the round was closed.
 //   - capture_time is the host arrival time of the round's first report (as a SourceTime with the
 //     host clock's epoch), smoothed by ArrivalClock with the step between the rounds' header
 //     times (the server's wall clock), so that reports read in one burst keep their spacing.
@@ -77,8 +84,19 @@ class ClientTables {
 
 struct AssemblerConfig {
   core::Duration lost_after = std::chrono::milliseconds(500);
+  /// An incomplete round found when the socket drained closes this long after its last report
+  /// unless more reports came: a VRPN server writes one update's reports together (one
+  /// send_pending_reports per mainloop), so a gap this long inside one update means a stalled
+  /// or split write, not more of the round on the way.
+  core::Duration settle_after = std::chrono::milliseconds(2);
   core::Duration frozen_after = std::chrono::milliseconds(0);  ///< 0: never
   std::size_t max_bodies = 1024;  ///< further (tracker, sensor) keys are ignored (counted)
+};
+
+/// A frame and the host time its data arrived (the FrameSink's `received`).
+struct AssembledFrame {
+  core::MocapFrame frame;
+  core::HostTime received{};  ///< arrival of the round's last report; the loss frame: when made
 };
 
 class FrameAssembler {
@@ -86,17 +104,19 @@ class FrameAssembler {
   explicit FrameAssembler(AssemblerConfig config = {}) : config_(config) {}
 
   /// A report arrived at `arrival`; returns the frame its arrival closed, if any.
-  [[nodiscard]] std::optional<core::MocapFrame> on_report(const Report& report,
-                                                          core::HostTime arrival);
-  /// Every byte received so far has been read: returns the round as a frame if it is complete.
-  [[nodiscard]] std::optional<core::MocapFrame> on_drained();
+  [[nodiscard]] std::optional<AssembledFrame> on_report(const Report& report,
+                                                        core::HostTime arrival);
+  /// Every byte received so far has been read: returns the round as a frame if it is complete,
+  /// else arms the settle deadline (idle_deadline).
+  [[nodiscard]] std::optional<AssembledFrame> on_drained();
   /// Closes the round unconditionally (end of a connection): its frame, if it has reports.
-  [[nodiscard]] std::optional<core::MocapFrame> flush();
+  [[nodiscard]] std::optional<AssembledFrame> flush();
   /// A new connection: forgets the round, the bodies and their poses (frame numbers and the
   /// capture clock go on).
   void reset();
-  /// Time passes without reports: the all-untracked frame after `lost_after` of silence (once).
-  [[nodiscard]] std::optional<core::MocapFrame> on_idle(core::HostTime now);
+  /// Time passes without reports: the incomplete round `settle_after` after its last report
+  /// (once the socket drained), and the all-untracked frame after `lost_after` of silence (once).
+  [[nodiscard]] std::optional<AssembledFrame> on_idle(core::HostTime now);
   /// When on_idle should next be asked (nullopt: nothing pending).
   [[nodiscard]] std::optional<core::HostTime> idle_deadline() const;
 
@@ -115,7 +135,7 @@ class FrameAssembler {
     bool tracked = true;
   };
   using Key = std::pair<std::string, std::int32_t>;
-  core::MocapFrame close_round();
+  AssembledFrame close_round();
   core::SourceTime next_capture(core::HostTime host, std::optional<Timeval> stamp);
 
   AssemblerConfig config_;
@@ -125,6 +145,8 @@ class FrameAssembler {
   std::set<std::size_t> in_round_;
   std::set<std::size_t> previous_round_;
   std::optional<core::HostTime> round_start_;
+  core::HostTime round_last_{};         // arrival of the round's last report
+  bool settling_ = false;               // the socket drained with the round incomplete
   std::optional<Timeval> round_stamp_;  // header time of the round's first report
   std::optional<Timeval> last_stamp_;   // ... of the last frame's
   ArrivalClock clock_;

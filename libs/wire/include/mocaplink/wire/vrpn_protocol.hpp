@@ -41,6 +41,10 @@ inline constexpr std::int32_t kLogDescription = -4;
 
 inline constexpr std::string_view kPosQuatType = "vrpn_Tracker Pos_Quat";
 inline constexpr std::string_view kVelocityType = "vrpn_Tracker Velocity";
+/// The client's health check and the server's answer (vrpn_BaseClass.C: a client sends a ping
+/// from its device's sender once a second until a pong from that sender comes back).
+inline constexpr std::string_view kPingType = "vrpn_Base ping_message";
+inline constexpr std::string_view kPongType = "vrpn_Base pong_message";
 inline constexpr std::size_t kPosQuatBytes = 64;
 
 /// The 24-byte cookie with remote log mode `log_mode` ('0' = none; §2).
@@ -107,8 +111,13 @@ struct PosQuat {
                                                         std::uint32_t sequence = 0);
 /// A Pos_Quat payload (64 bytes; the padding word repeats the sensor, as the library does).
 [[nodiscard]] std::vector<std::byte> encode_pos_quat(const PosQuat& report);
-/// A Velocity payload (72 bytes; §5.2): velocity, identity vel_quat, vel_quat_dt.
+/// A Velocity payload (72 bytes; §5.2, vrpn_Tracker::encode_vel_to): i32 sensor twice, vel[3]
+/// (m/s, tracker world frame), vel_quat x, y, z, w (the rotation the sensor undergoes in
+/// vel_quat_dt, in the world frame: q(t + dt) = vel_quat · q(t), as vrpn_Tracker_Filter applies
+/// it), vel_quat_dt (s).
 [[nodiscard]] std::vector<std::byte> encode_velocity(std::int32_t sensor,
-                                                     const Eigen::Vector3d& v_m_s, double dt_s);
+                                                     const Eigen::Vector3d& v_m_s,
+                                                     const Eigen::Quaterniond& vel_quat,
+                                                     double vel_quat_dt_s);
 
 }  // namespace mocaplink::wire::vrpn

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "mocaplink/sources/descriptor.hpp"
+#include "mocaplink/sources/source.hpp"  // LastError
 
 namespace mocaplink::sources {
 
@@ -88,22 +89,5 @@ template <typename Impl, typename... Args>
   loop.run([p = std::move(provider)](Impl& i) mutable { i.run(std::move(p)); });
   return std::nullopt;
 }
-
-/// A source's most recent error or warning text; any thread.
-class LastError {
- public:
-  [[nodiscard]] std::string get() const {
-    const std::lock_guard lock(mutex_);
-    return text_;
-  }
-  void set(std::string text) {
-    const std::lock_guard lock(mutex_);
-    text_ = std::move(text);
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::string text_;
-};
 
 }  // namespace mocaplink::sources

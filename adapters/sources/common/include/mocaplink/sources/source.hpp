@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/time.hpp"
@@ -40,11 +42,37 @@ using FrameSink = std::function<void(core::MocapFrame frame, core::HostTime rece
 /// Called when the connection state changes, on the source's thread.
 using StateSink = std::function<void(SourceState state, const std::string& detail)>;
 
+/// A line of text one thread sets and any reads: a source's most recent error or warning, or
+/// why it last dropped a packet (SourceCounters::last_rejection).
+class LastError {
+ public:
+  [[nodiscard]] std::string get() const {
+    const std::lock_guard lock(mutex_);
+    return text_;
+  }
+  void set(std::string text) {
+    const std::lock_guard lock(mutex_);
+    text_ = std::move(text);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::string text_;
+};
+
 /// Counters every source keeps; read from any thread.
 struct SourceCounters {
   std::atomic<std::uint64_t> frames{0};      ///< frames delivered to the sink
   std::atomic<std::uint64_t> malformed{0};   ///< packets/messages dropped as malformed
   std::atomic<std::uint64_t> reconnects{0};  ///< connection attempts after the first
+  /// Packets dropped for where they came from (another sender than the configured one).
+  std::atomic<std::uint64_t> refused{0};
+  /// Why the latest malformed or refused packet was dropped ("" if the source does not say):
+  /// `bodies`, `record`, the dashboard and the daemon's log show it next to rejected().
+  LastError last_rejection;
+
+  /// Packets dropped unread, malformed or refused: the count those commands show.
+  [[nodiscard]] std::uint64_t rejected() const { return malformed + refused; }
 };
 
 class Source {

@@ -1,12 +1,17 @@
 // The NatNet emulator behind `mocaplink serve --protocol natnet` (natnet.md §1, §2, §9 "Project
 // emulator"): a Motive stand-in that answers on its command port (NAT_CONNECT → NAT_SERVERINFO,
-// NAT_REQUEST_MODELDEF → NAT_MODELDEF, NAT_KEEPALIVE, NAT_DISCONNECT, NAT_ECHOREQUEST, NAT_REQUEST
-// "Bitstream" and "Bitstream,X.Y") and streams every frame it is given as NAT_FRAMEOFDATA in the
-// chosen bitstream version (3.0, 3.1, 4.0, 4.1 or 4.2):
+// NAT_REQUEST_MODELDEF → NAT_MODELDEF, NAT_ECHOREQUEST → NAT_ECHORESPONSE, NAT_REQUEST "Bitstream"
+// and "Bitstream,X.Y"; NAT_KEEPALIVE and NAT_DISCONNECT unanswered) and streams every frame it is
+// given as NAT_FRAMEOFDATA in the chosen bitstream version (3.0, 3.1, 4.0, 4.1 or 4.2):
 //   multicast: to group:data_port from a socket whose outgoing interface is `interface` (the
 //              system's default when empty), loopback delivery on, TTL 1;
-//   unicast:   to every client that sent NAT_CONNECT, from the command socket, until it sends
-//              NAT_DISCONNECT or nothing (no keep-alive) for keepalive_timeout.
+//   unicast:   as Motive does (docs/sources.md "Where unicast frames come from"): from a socket
+//              bound to listen_host:data_port, to the endpoint each client's NAT_CONNECT came
+//              from, until it sends NAT_DISCONNECT or no NAT_KEEPALIVE for keepalive_timeout
+//              (a repeated NAT_CONNECT does not count), when it gets NAT_DISCONNECTBYTIMEOUT.
+//              Each client has its own bitstream version: "Bitstream,X.Y" from a connected
+//              client changes its frames alone (the next three carry the "bitstream changed"
+//              bit 0x08); NAT_REQUEST from an endpoint that never connected is ignored (counted).
 // Bodies get ids 1, 2, … by name in order of first appearance and keep them; a frame whose body
 // list differs from the previous one is served with the "models changed" bit (and the next two
 // frames too, in case one is lost), and NAT_MODELDEF describes the current list (empty before the
@@ -43,10 +48,12 @@ struct NatnetServerOptions {
   double rate_hz = 100.0;                                  ///< provider schedule, Hz
   bool multicast = true;
   std::string group = "239.255.42.99";
+  /// Multicast destination port; unicast: the port frames leave from (0 = any free port, tests).
   std::uint16_t data_port = wire::natnet::kDefaultDataPort;
   std::string interface;  ///< multicast outgoing interface (IPv4); "" = the system's default
-  wire::natnet::Version version{4, 1};
-  std::chrono::milliseconds keepalive_timeout{5000};
+  wire::natnet::Version version{4, 1};  ///< multicast stream / a unicast client's first version
+  /// Motive ends a unicast session after about 10 s without a keep-alive.
+  std::chrono::milliseconds keepalive_timeout{10000};
   bool y_up = true;
   std::size_t max_clients = 64;  ///< unicast clients; further NAT_CONNECTs are ignored (counted)
 };
@@ -67,6 +74,9 @@ struct NatnetServerCounters {
   std::atomic<std::uint64_t> clients_now{0};        ///< unicast clients being served
   std::atomic<std::uint64_t> clients_timed_out{0};  ///< unicast clients without keep-alive
   std::atomic<std::uint64_t> clients_rejected{0};
+  /// NAT_REQUEST from an endpoint that never connected (unicast), or a bitstream not served or
+  /// asked for on a multicast stream.
+  std::atomic<std::uint64_t> requests_refused{0};
   std::atomic<std::uint64_t> model_requests{0};
   std::atomic<std::uint64_t> malformed_requests{0};
 };
@@ -79,9 +89,11 @@ class NatnetServer final : public Emulator {
   /// Binds the command socket (and the multicast sender) and starts the thread. Call once.
   [[nodiscard]] std::optional<std::string> start(FrameProvider provider) override;
   [[nodiscard]] std::uint16_t port() const override { return port_; }
+  /// The data port: unicast frames leave from it, multicast frames go to it. After start().
+  [[nodiscard]] std::uint16_t data_port() const { return data_port_; }
   void publish(core::MocapFrame frame) override;
   void stop() override;
-  /// "N frames, N clients connected, N timed out, N malformed requests".
+  /// "N frames, N clients connected, N timed out, N requests refused, N malformed requests".
   [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const NatnetServerCounters& counters() const { return counters_; }
 
@@ -92,6 +104,7 @@ class NatnetServer final : public Emulator {
   std::unique_ptr<Impl> impl_;
   std::thread thread_;
   std::uint16_t port_ = 0;
+  std::uint16_t data_port_ = 0;
 };
 
 }  // namespace mocaplink::sources

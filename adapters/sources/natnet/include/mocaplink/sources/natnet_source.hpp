@@ -5,11 +5,16 @@
 // be 2.5 ≤ v < 5.0. Transport, group and data port come from the server info (3.0+) unless the URL
 // forces them. A data socket is bound to `local`:data_port (SO_REUSEADDR) and, for multicast,
 // joins the group on the `local` interface (the default interface when `local` is unset). Unicast
-// sends NAT_KEEPALIVE every keep_alive and accepts frames on both sockets. Then
+// sends NAT_KEEPALIVE every keep_alive from the command socket and reads frames on both sockets:
+// on the command socket, those from the server's data port (where Motive sends them from) and its
+// command port; a datagram from any other endpoint there is foreign (counted, dropped). Then
 // NAT_REQUEST_MODELDEF; frames are delivered once the model definitions are known, bodies named by
 // them (wire/natnet_mocap_frame.hpp). The model definitions are re-requested when a frame says the
-// model list changed or names an unknown id (at most every model_retry); a frame that says the
-// bitstream changed (or Edit mode) makes the client ask for the server info again.
+// model list changed or names an unknown id (at most every model_retry). A frame that says the
+// bitstream changed (§4.7 0x08, or 0x04: Edit mode or, in the samples, the same) or that does not
+// decode makes the client ask for the server info (and a NatNet 4 server's "Bitstream") again at
+// once, at most every 250 ms; a new version drops the model table and asks for it again.
+// NAT_DISCONNECTBYTIMEOUT from the server ends the session (reconnect after the back-off).
 //
 // Faults: a malformed datagram is counted and dropped. No frame for silence_timeout (or no server
 // info within it) drops the connection: state `disconnected` at once, a back-off from
@@ -52,7 +57,14 @@ struct NatnetCounters {
   std::atomic<std::uint64_t> frames_before_models{0};  ///< frames dropped: no model defs yet
   std::atomic<std::uint64_t> trailing_bytes{0};        ///< datagrams longer than their header says
   std::atomic<std::uint64_t> keep_alives{0};
-  std::atomic<std::uint64_t> foreign_datagrams{0};  ///< on the command socket, not from the server
+  /// On the command socket from neither the server's command port nor its data port.
+  std::atomic<std::uint64_t> foreign_datagrams{0};
+  /// Frames from the server's command port: read, though Motive sends unicast frames from its
+  /// data port and OptiTrack's NatNet library drops these (docs/sources.md).
+  std::atomic<std::uint64_t> frames_from_command_port{0};
+  std::atomic<std::uint64_t> disconnects_by_server{0};  ///< NAT_DISCONNECTBYTIMEOUT received
+  std::atomic<std::uint64_t> revalidations{0};      ///< server info asked again (flag, bad frame)
+  std::atomic<std::uint64_t> bitstream_changes{0};  ///< version changed within a session
   std::atomic<std::uint64_t> timeouts{0};           ///< connections dropped for silence
 };
 

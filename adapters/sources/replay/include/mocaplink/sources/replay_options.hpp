@@ -3,7 +3,6 @@
 #pragma once
 
 #include <array>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -47,7 +46,11 @@ class ReplaySchedule {
 
  private:
   double speed_;
-  std::optional<core::SourceTime> first_capture_;
+  // A flag and a value rather than std::optional: GCC 12 at -O2, with due() inlined into
+  // ReplaySource's loop, cannot see that the optional is engaged where it is read and warns
+  // -Wmaybe-uninitialized.
+  bool pass_started_ = false;
+  core::SourceTime first_capture_{};  ///< of the current pass; meaningful once pass_started_
   core::Duration pass_start_{0};
   core::Duration last_due_{0};
 };

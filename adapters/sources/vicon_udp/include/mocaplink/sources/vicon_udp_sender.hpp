@@ -1,13 +1,21 @@
 // The Vicon Tracker UDP object stream emulator behind `mocaplink serve --protocol vicon-udp --to
 // HOST:PORT`: one datagram per frame (vicon-tracker-udp.md §2) sent to HOST:PORT, unasked, as a
-// Tracker does. Settings (`serve --set KEY=VALUE`):
+// Tracker does: the items, then zero bytes up to the block size. Settings (`serve --set
+// KEY=VALUE`):
+//   block_size=N          bytes of every datagram, as Tracker's "Data Block Size" (default 1024,
+//                         the most common; 256 and 512 are Tracker's others; 80..65507, or 0 for
+//                         no padding: exactly 5 + 75 bytes per object, which no Tracker sends).
+//                         Objects that do not fit in one block (13 in 1024, 6 in 512, 3 in 256)
+//                         go on in further blocks with the same frame number (unverified what
+//                         Tracker does then; mocaplink's client merges them)
 //   rotation=xyz|zyx      the Euler convention it encodes (default xyz, as the source's default)
 //   frame_step=N          Vicon frame numbers per datagram (1..100, default 1; 2 = half the
 //                         camera rate, as a Tracker streaming below its camera rate)
 //   first_frame=N         the first frame number (0..4294967295, default 1; near 2^32 to wrap)
 //   occluded=omit|zeros   an untracked body is left out (default) or sent with six zeros
-//   per_datagram=N        at most N objects per datagram (1..255, default 255): more are split
-//                         over several datagrams with the same frame number
+//   per_datagram=N        at most N objects per datagram (1..255, default 255, and at most what
+//                         fits in the block): more are split over several datagrams with the
+//                         same frame number
 // Bodies whose names exceed 24 bytes are cut to 24, as the item has no room for more.
 #pragma once
 
@@ -34,11 +42,13 @@ struct ViconUdpSenderOptions {
   std::uint32_t first_frame = 1;
   bool occluded_as_zeros = false;
   std::size_t per_datagram = 255;
+  /// Bytes per datagram, zero-padded (0: unpadded, 5 + 75·n).
+  std::size_t block_bytes = wire::vicon_udp::kDefaultBlockBytes;
 };
 
 /// The `serve --set` keys of the vicon-udp emulator.
-inline constexpr std::array<std::string_view, 5> kViconUdpEmulatorKeys = {
-    "first_frame", "frame_step", "occluded", "per_datagram", "rotation"};
+inline constexpr std::array<std::string_view, 6> kViconUdpEmulatorKeys = {
+    "block_size", "first_frame", "frame_step", "occluded", "per_datagram", "rotation"};
 
 /// ViconUdpSenderOptions from serve's options, or why a setting is wrong (one line).
 [[nodiscard]] config::ValueOrError<ViconUdpSenderOptions> vicon_udp_sender_options(

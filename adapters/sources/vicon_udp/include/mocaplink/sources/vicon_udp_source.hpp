@@ -5,8 +5,10 @@
 //
 // There is no connection: the state is `connected` while datagrams arrive and `disconnected`
 // after `lost` without one (then one frame with every body untracked goes out, so no pose
-// outlives the stream). A malformed datagram or one from another sender than `from` is dropped
-// and counted; it never ends the source.
+// outlives the stream). Datagrams padded with zeros to Tracker's block size are read. A malformed
+// datagram (SourceCounters::malformed) or one from another sender than `from` (::refused) is
+// dropped and counted, its reason kept in SourceCounters::last_rejection; it never ends the
+// source.
 #pragma once
 
 #include <atomic>
@@ -35,6 +37,7 @@ struct ViconUdpCounters {
   std::atomic<std::uint64_t> split_frames{0};
   std::atomic<std::uint64_t> unknown_items{0};
   std::atomic<std::uint64_t> untracked{0};
+  std::atomic<std::uint64_t> padded{0};  ///< datagrams with zero padding after the items
 };
 
 class ViconUdpSource final : public Source {
