@@ -41,6 +41,10 @@ std::string_view to_string(BridgeEventKind kind) {
       return "origin_state";
     case BridgeEventKind::agreement:
       return "agreement";
+    case BridgeEventKind::vehicle_streams:
+      return "vehicle_streams";
+    case BridgeEventKind::vehicle_setup:
+      return "vehicle_setup";
   }
   return "unknown";
 }
@@ -143,8 +147,10 @@ void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
   vc.system_id = spec.system_id;
   if (origin) vc.origin = config_.origin;
   vc.agreement = config_.agreement;
-  Vehicle vehicle{spec, static_cast<std::size_t>(it - bodies_.begin()), Sender(sc),
-                  VehicleState(vc), origin};
+  const auto body = static_cast<std::size_t>(it - bodies_.begin());
+  const VehicleStreams streams(spec.system_id, spec.component_id);
+  VehicleSetup setup(spec.system_id, spec.component_id, spec.profile, sc.messages);
+  Vehicle vehicle{spec, body, Sender(sc), VehicleState(vc), origin, streams, std::move(setup), 0};
   if (slot == vehicles_.size()) {
     vehicles_.emplace_back(std::move(vehicle));
   } else {
@@ -294,17 +300,32 @@ void Bridge::on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& 
   end_frame(out);
 }
 
+Duration Bridge::max_capture_step_back() const {
+  return std::chrono::duration_cast<Duration>(
+      std::chrono::duration<double, std::milli>(config_.tracking.loss_timeout_ms));
+}
+
+Duration Bridge::frame_age(const MocapFrame& frame, HostTime received, HostTime now) const {
+  const Duration since_received = now - received;
+  const std::optional<HostTime> captured = capture_mapper_.to_host(frame.capture_time);
+  if (!captured || !last_capture_ ||
+      frame.capture_time + max_capture_step_back() < *last_capture_) {
+    return since_received;  // nothing to place it by, or a restart (begin_frame re-seeds)
+  }
+  // A capture "after" now (a source clock that jumped forward) gives a negative age: by arrival.
+  return std::max(since_received, now - *captured);
+}
+
 void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutput& out) {
   out.messages.clear();
   out.events.clear();
   const HostTime capture =
       capture_mapper_.on_frame(frame.capture_time, received, frame.source_latency);
+  capture_age_.add(std::max(Duration::zero(), received - capture));
   // A step back of more than loss_timeout_ms cannot be a reordered datagram (those are a few
   // frame periods late): the source's clock started again. Smaller steps are left to the
   // Trackers, which refuse non-increasing times.
-  const auto max_step_back = std::chrono::duration_cast<Duration>(
-      std::chrono::duration<double, std::milli>(config_.tracking.loss_timeout_ms));
-  frame_restarted_ = last_capture_ && frame.capture_time + max_step_back < *last_capture_;
+  frame_restarted_ = last_capture_ && frame.capture_time + max_capture_step_back() < *last_capture_;
   if (frame_restarted_) ++source_restarts_;
   if (!last_capture_ || frame_restarted_ || frame.capture_time > *last_capture_) {
     last_capture_ = frame.capture_time;
@@ -356,6 +377,16 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
   }
   if (reaction.origin_changed) {
     std::string text = "origin " + std::string(to_string(v.state.origin_state()));
+    if (v.state.origin_state() == OriginState::unconfirmed) {
+      const VehicleSetupSnapshot setup = v.setup.snapshot();
+      text += ": not confirmed after " +
+              std::to_string(
+                  std::chrono::duration_cast<std::chrono::seconds>(kOriginGiveUpAfter).count()) +
+              " s, no longer sent. " + unconfirmed_origin_advice(setup.autopilot, setup.version);
+    }
+    if (v.state.origin_state() == OriginState::withheld) {
+      text += ": " + withheld_origin_advice(v.setup.version());
+    }
     if (v.state.origin_state() == OriginState::conflict) {
       text +=
           ": ArduPilot already has a different EKF origin; reboot the vehicle or change "
@@ -373,8 +404,26 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
     if (a.position_offset_m) {
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
     }
+    if (a.settling) text += " (the vehicle booted moments ago: compared once it has settled)";
     out.events.push_back({BridgeEventKind::agreement, now, index, v.spec.name, text});
   }
+}
+
+void Bridge::stream_events(std::size_t index, std::vector<std::string>& notes, HostTime now,
+                           BridgeOutput& out, BridgeEventKind kind) const {
+  for (std::string& note : notes) {
+    out.events.push_back({kind, now, index, vehicles_[index]->spec.name, std::move(note)});
+  }
+  notes.clear();
+}
+
+DelayInputs Bridge::delay_inputs(std::optional<double> capture_age_ms,
+                                 const VehicleSnapshot& heard) const {
+  DelayInputs d;
+  d.capture_age_ms = capture_age_ms;
+  if (heard.timesync) d.link_rtt_ms = static_cast<double>(heard.timesync->rtt_ns) / 1e6;
+  d.vehicle_timesync = heard.counters.timesync_requests > 0;
+  return d;
 }
 
 BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
@@ -389,28 +438,108 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
     v.sender.send(*reaction.timesync_reply, received, signing_now_10us(received), out.messages);
   }
   vehicle_events(vehicle, reaction, received, out);
+  std::vector<std::string> notes;
+  v.streams.on_message(message, received, notes);
+  stream_events(vehicle, notes, received, out);
+  v.setup.on_message(message, received, notes);
+  stream_events(vehicle, notes, received, out, BridgeEventKind::vehicle_setup);
   return out;
 }
 
 BridgeOutput Bridge::on_tick(HostTime now) {
   BridgeOutput out;
+  // The median capture age is the same for every vehicle: one sort of the window per tick.
+  std::optional<double> capture_age_ms;
+  if (const auto age = capture_age_.summary()) {
+    capture_age_ms = std::chrono::duration<double, std::milli>(age->p50).count();
+  }
   for (std::size_t i = 0; i < vehicles_.size(); ++i) {
     if (!vehicles_[i]) continue;
     Vehicle& v = *vehicles_[i];
-    VehicleReaction reaction;
-    reaction.link_changed = v.state.on_tick(now);
+    const VehicleReaction reaction = v.state.on_tick(now);
     vehicle_events(i, reaction, now, out);
     if (!v.spec.enabled) continue;
     const std::size_t first = out.messages.size();
+    // The origin goes only to a vehicle heard, and to a PX4 only from 1.15 (origin_gate).
+    // The heartbeat's autopilot at once (the set-up learns it on its own tick); the set-up's
+    // version only when it is of that autopilot.
+    const AutopilotFamily heard_as = autopilot_family(v.state.autopilot());
+    const bool setup_current = v.setup.autopilot() == heard_as;
+    const OriginGate gate =
+        origin_gate(v.state.heard(), heard_as,
+                    setup_current ? v.setup.version() : std::optional<FirmwareVersion>{},
+                    setup_current && v.setup.identified());
+    if (v.sends_origin && gate == OriginGate::withhold) {
+      vehicle_events(i, v.state.withhold_origin(), now, out);
+    }
     const GeodeticPosition* origin =
-        v.sends_origin && v.state.wants_origin() ? &*config_.origin : nullptr;
+        v.sends_origin && v.state.wants_origin() && gate == OriginGate::send ? &*config_.origin
+                                                                             : nullptr;
     v.sender.on_tick(now, signing_now_10us(now), origin, config_.timesync_requests, out.messages);
     for (std::size_t k = first; k < out.messages.size(); ++k) {
       const auto* ts = std::get_if<mavlink::Timesync>(&out.messages[k].message);
       if (ts != nullptr && ts->tc1 == 0) v.state.on_timesync_request_sent(ts->ts1);
     }
+    // The agreement check's messages: asked of the vehicle whose heartbeat is heard.
+    const VehicleSnapshot heard = v.state.snapshot();
+    StreamTarget target;
+    target.alive = heard.heartbeat && heard.last_heartbeat &&
+                   now - *heard.last_heartbeat <= kVehicleSilentAfter;
+    if (heard.heartbeat) {
+      target.autopilot = heard.heartbeat->autopilot;
+      target.compid = heard.heartbeat->compid;
+    }
+    std::vector<mavlink::Message> requests;
+    std::vector<std::string> notes;
+    v.streams.on_tick(now, target, requests, notes);
+    stream_events(i, notes, now, out);
+    // After a reboot (VehicleStreams sees its boot clock go back) the set-up list is read again
+    // and the origin, lost with the vehicle's estimator, is sent again: without it ArduPilot
+    // never arms ("PreArm: AHRS: waiting for home", seen against ArduCopter SITL).
+    if (const std::uint64_t reboots = v.streams.snapshot().reboots; reboots != v.reboots_seen) {
+      v.reboots_seen = reboots;
+      v.setup.on_reboot(now);
+      // A withheld origin was never sent: the gate decides again, with its own line.
+      const bool was_withheld = v.state.origin_state() == OriginState::withheld;
+      if (v.state.on_reboot().origin_changed && !was_withheld) {
+        out.events.push_back({BridgeEventKind::origin_state, now, i, v.spec.name,
+                              "origin sending: the vehicle rebooted and lost the origin it had"});
+      }
+    }
+    SetupTarget setup_target;
+    setup_target.alive = target.alive;
+    setup_target.autopilot = target.autopilot;
+    setup_target.compid = target.compid;
+    setup_target.armed = heard.heartbeat && heard.heartbeat->armed;
+    v.setup.on_tick(now, setup_target, delay_inputs(capture_age_ms, heard), requests, notes);
+    stream_events(i, notes, now, out, BridgeEventKind::vehicle_setup);
+    for (const mavlink::Message& m : requests) {
+      v.sender.send(m, now, signing_now_10us(now), out.messages);
+    }
   }
   return out;
+}
+
+SetupRequestResult Bridge::apply_setup(std::size_t slot, std::span<const std::string> parameters,
+                                       HostTime now) {
+  Vehicle* v = live(slot);
+  if (v == nullptr) return {false, "no such vehicle"};
+  return v->setup.apply(parameters, now);
+}
+
+SetupRequestResult Bridge::reboot_vehicle(std::size_t slot, HostTime now, BridgeOutput& out) {
+  Vehicle* v = live(slot);
+  if (v == nullptr) return {false, "no such vehicle"};
+  std::vector<mavlink::Message> command;
+  SetupRequestResult result = v->setup.reboot(now, command);
+  for (const mavlink::Message& m : command) {
+    v->sender.send(m, now, signing_now_10us(now), out.messages);
+  }
+  if (result.accepted) {
+    out.events.push_back({BridgeEventKind::vehicle_setup, now, slot, v->spec.name,
+                          "reboot asked of the autopilot (by the operator)"});
+  }
+  return result;
 }
 
 bool Bridge::set_rate_hz(std::size_t vehicle, double rate_hz) {
@@ -423,6 +552,7 @@ bool Bridge::set_messages(std::size_t vehicle, const MessageSet& messages) {
   if (v == nullptr) return false;
   if (messages.needs_origin() && !geodetic_) return false;
   v->sender.set_messages(messages);
+  v->setup.set_messages(messages);
   return true;
 }
 
@@ -454,7 +584,8 @@ BridgeSnapshot Bridge::snapshot(HostTime now) const {
     if (!vehicles_[i]) continue;
     const Vehicle& v = *vehicles_[i];
     s.vehicles.push_back({i, v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled,
-                          v.sender.snapshot(), v.state.snapshot()});
+                          v.sender.snapshot(now), v.state.snapshot(), v.streams.snapshot(),
+                          v.setup.snapshot()});
   }
   return s;
 }

@@ -4,12 +4,11 @@
 
 namespace mocaplink::core {
 
-bool LateFrames::skip_if_late(HostTime received, HostTime now) noexcept {
-  const Duration wait = now - received;
-  if (wait <= max_wait_) return false;
+bool LateFrames::skip_if_late(Duration age) noexcept {
+  if (age <= max_wait_) return false;
   ++skipped_;
   ++pending_.skipped;
-  pending_.longest_wait = std::max(pending_.longest_wait, wait);
+  pending_.oldest = std::max(pending_.oldest, age);
   return true;
 }
 

@@ -299,4 +299,30 @@ mavlink::CommandLong build_request_gps_global_origin(std::uint8_t target_system,
   return m;
 }
 
+mavlink::CommandLong build_set_message_interval(std::uint32_t message_id, std::int32_t interval_us,
+                                                std::uint8_t target_system,
+                                                std::uint8_t target_component,
+                                                std::uint8_t confirmation) {
+  mavlink::CommandLong m;
+  m.command = 511;  // MAV_CMD_SET_MESSAGE_INTERVAL
+  m.param1 = static_cast<float>(message_id);
+  m.param2 = static_cast<float>(interval_us);  // exact: |interval_us| < 2^24 for any rate ≥ 0.06 Hz
+  m.target_system = target_system;
+  m.target_component = target_component;
+  m.confirmation = confirmation;
+  return m;
+}
+
+mavlink::RequestDataStream build_request_data_stream(std::uint8_t stream_id, std::uint16_t rate_hz,
+                                                     std::uint8_t target_system,
+                                                     std::uint8_t target_component) {
+  mavlink::RequestDataStream m;
+  m.req_message_rate = rate_hz;
+  m.target_system = target_system;
+  m.target_component = target_component;
+  m.req_stream_id = stream_id;
+  m.start_stop = 1;
+  return m;
+}
+
 }  // namespace mocaplink::core

@@ -1,10 +1,12 @@
 #include "mocaplink/core/profile.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdio>
 
 #include "mocaplink/core/message_table.hpp"
+#include "mocaplink/core/vehicle_streams.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 
 namespace mocaplink::core {
@@ -37,6 +39,8 @@ constexpr std::array kProfiles{
         {MessageKind::hil_gps, MessageKind::local_position_ned, MessageKind::att_pos_mocap},
         OriginRule::never},
     ProfileDescriptor{Profile::custom, "custom", {}, OriginRule::with_vision},
+    // px4 or ardupilot, whichever the vehicle runs: their ODOMETRY is the same frame (§12.2).
+    ProfileDescriptor{Profile::automatic, "auto", {MessageKind::odometry}, OriginRule::always},
 };
 
 constexpr bool profiles_in_enum_order() {
@@ -195,7 +199,19 @@ double link_bytes_per_second(const MessageSet& messages, double rate_hz, bool si
       static_cast<double>(frame) * 4.0 +
       static_cast<double>(mavlink::Heartbeat::kMaxLength + 2 * mavlink::Timesync::kMaxLength +
                           mavlink::SetGpsGlobalOrigin::kMaxLength);
-  return per_send * rate_hz + clock_driven;
+  // From the vehicle: ATTITUDE and LOCAL_POSITION_NED at the rate the agreement check asks for
+  // (vehicle_streams.hpp). A UART carries each direction on its own wire, but a telemetry radio
+  // shares one air channel between both, so the bound counts them (signed like ours).
+  // And the estimator's health the set-up list asks for at 1 Hz (the larger of ArduPilot's and
+  // PX4's message).
+  const double requested =
+      static_cast<double>(2 * frame + mavlink::Attitude::kMaxLength +
+                          mavlink::LocalPositionNed::kMaxLength) *
+          kStreamRateHz +
+      static_cast<double>(frame + std::max(mavlink::EkfStatusReport::kMaxLength,
+                                           mavlink::EstimatorStatus::kMaxLength)) *
+          kEstimatorRateHz;
+  return per_send * rate_hz + clock_driven + requested;
 }
 
 double serial_bytes_per_second(std::uint32_t baud) {
@@ -211,10 +227,11 @@ std::optional<std::string> serial_bandwidth_warning(Profile profile, const Messa
   // autopilots.md §7: a full ODOMETRY frame is 245 bytes; 57600 baud carries ~23/s.
   char text[256];
   std::snprintf(text, sizeof text,
-                "profile %.*s at %g Hz needs up to %.0f bytes/s but %u baud carries %.0f: frames "
-                "will be dropped; lower rate_hz or raise the baud rate",
+                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's ATTITUDE "
+                "and LOCAL_POSITION_NED at %g Hz and its estimator status at 1 Hz) but %u baud "
+                "carries %.0f: frames will be dropped; lower rate_hz or raise the baud rate",
                 static_cast<int>(to_string(profile).size()), to_string(profile).data(), rate_hz,
-                needed, baud, available);
+                needed, kStreamRateHz, baud, available);
   return std::string(text);
 }
 

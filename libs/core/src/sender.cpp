@@ -143,6 +143,8 @@ void Sender::on_estimate(const BodyEstimate& estimate, const SendContext& contex
   }
   if (any) {
     last_pose_sent_ = context.now;
+    ++counters_.poses;
+    pose_sends_.add(context.now);
   } else if (!pose_valid) {
     ++counters_.due_without_pose;
   }
@@ -187,6 +189,10 @@ void Sender::on_tick(HostTime now, std::uint64_t signing_now_10us, const Geodeti
 void Sender::send(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
                   std::vector<OutgoingMessage>& out) {
   if (std::holds_alternative<mavlink::Timesync>(message)) ++counters_.timesync_replies;
+  if (const auto* command = std::get_if<mavlink::CommandLong>(&message)) {
+    if (command->command == 511) ++counters_.interval_requests;  // MAV_CMD_SET_MESSAGE_INTERVAL
+  }
+  if (std::holds_alternative<mavlink::RequestDataStream>(message)) ++counters_.data_stream_requests;
   emit(message, now, signing_now_10us, out);
 }
 
@@ -207,7 +213,7 @@ void Sender::emit(const mavlink::Message& message, HostTime now, std::uint64_t s
   counters_.bytes += o.frame.size();
 }
 
-SenderSnapshot Sender::snapshot() const {
+SenderSnapshot Sender::snapshot(HostTime now) const {
   SenderSnapshot s;
   s.system_id = config_.system_id;
   s.component_id = config_.component_id;
@@ -216,6 +222,7 @@ SenderSnapshot Sender::snapshot() const {
   s.paused = paused_;
   s.signing = signer_.has_value();
   s.last_pose_sent = last_pose_sent_;
+  s.send_rate_hz = pose_sends_.rate_hz(now);
   s.counters = counters_;
   return s;
 }

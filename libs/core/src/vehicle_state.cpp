@@ -24,13 +24,13 @@ std::int64_t alt_mm(double altitude_m) {
 
 }  // namespace
 
-std::string_view to_string(LinkState state) {
+std::string_view to_string(HeartbeatState state) {
   switch (state) {
-    case LinkState::waiting:
+    case HeartbeatState::waiting:
       return "waiting";
-    case LinkState::alive:
+    case HeartbeatState::alive:
       return "alive";
-    case LinkState::silent:
+    case HeartbeatState::silent:
       return "silent";
   }
   return "unknown";
@@ -46,6 +46,10 @@ std::string_view to_string(OriginState state) {
       return "confirmed";
     case OriginState::conflict:
       return "conflict";
+    case OriginState::unconfirmed:
+      return "unconfirmed";
+    case OriginState::withheld:
+      return "withheld";
   }
   return "unknown";
 }
@@ -92,7 +96,8 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
   } else if (const auto* origin = std::get_if<mavlink::GpsGlobalOrigin>(&message.message)) {
     on_origin(*origin, reaction);
   } else if (const auto* att = std::get_if<mavlink::Attitude>(&message.message)) {
-    if (mocap != nullptr && mocap->state == TrackingState::tracking && std::isfinite(att->yaw)) {
+    if (settled(att->time_boot_ms, now, reaction) && mocap != nullptr &&
+        mocap->state == TrackingState::tracking && std::isfinite(att->yaw)) {
       const double mocap_yaw = euler_321_from_quaternion(mocap->q_ned_frd).yaw_rad;
       const double diff_rad = static_cast<double>(att->yaw) - mocap_yaw;
       const double offset = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
@@ -102,7 +107,8 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
       }
     }
   } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
-    if (mocap != nullptr && mocap->state == TrackingState::tracking) {
+    if (settled(pos->time_boot_ms, now, reaction) && mocap != nullptr &&
+        mocap->state == TrackingState::tracking) {
       const Eigen::Vector3d p(static_cast<double>(pos->x), static_cast<double>(pos->y),
                               static_cast<double>(pos->z));
       const double offset = (p - mocap->p_ned_m).norm();
@@ -131,8 +137,8 @@ void VehicleState::on_heartbeat(const ReceivedMessage& message, HostTime now,
   v.armed = (hb.base_mode & kMavModeFlagSafetyArmed) != 0;
   heartbeat_ = v;
   last_heartbeat_ = now;
-  if (link_ != LinkState::alive) {
-    link_ = LinkState::alive;
+  if (link_ != HeartbeatState::alive) {
+    link_ = HeartbeatState::alive;
     reaction.link_changed = true;
   }
 }
@@ -180,6 +186,8 @@ void VehicleState::on_origin(const mavlink::GpsGlobalOrigin& reported, VehicleRe
   OriginState next = origin_;
   if (match) {
     next = OriginState::confirmed;
+  } else if (origin_ == OriginState::withheld) {
+    ++counters_.origin_mismatches;  // not ours, and ours is not to be sent
   } else {
     ++counters_.origin_mismatches;
     const bool ardupilot = heartbeat_ && heartbeat_->autopilot == kMavAutopilotArdupilot;
@@ -193,6 +201,27 @@ void VehicleState::on_origin(const mavlink::GpsGlobalOrigin& reported, VehicleRe
   }
 }
 
+bool VehicleState::settled(std::uint32_t time_boot_ms, HostTime now, VehicleReaction& reaction) {
+  const bool settling = std::chrono::milliseconds(time_boot_ms) < kAgreementSettle;
+  if (!settling) {
+    agreement_.settling = false;
+    return true;
+  }
+  // Not converged yet (or just rebooted): nothing of it is compared, nor kept for later.
+  vehicle_yaw_offset_deg_.reset();
+  vehicle_position_offset_m_.reset();
+  agreement_.yaw_offset_deg.reset();
+  agreement_.position_offset_m.reset();
+  agreement_.disagreeing_since.reset();
+  agreement_.settling = true;
+  agreement_.updated = now;
+  if (agreement_.verdict != AgreementVerdict::unknown) {
+    agreement_.verdict = AgreementVerdict::unknown;
+    reaction.agreement_changed = true;
+  }
+  return false;
+}
+
 void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
   const AgreementThresholds& t = config_.agreement;
   AgreementVerdict verdict = AgreementVerdict::unknown;
@@ -201,9 +230,14 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
   const bool pos_bad =
       vehicle_position_offset_m_ && *vehicle_position_offset_m_ > t.max_position_offset_m;
   if (yaw_bad || pos_bad) {
-    verdict = AgreementVerdict::disagree;
-  } else if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_) {
-    verdict = AgreementVerdict::agree;
+    // Disagree only once it has lasted kAgreementHold; unknown until then (header comment).
+    if (!agreement_.disagreeing_since) agreement_.disagreeing_since = now;
+    if (now - *agreement_.disagreeing_since >= kAgreementHold) {
+      verdict = AgreementVerdict::disagree;
+    }
+  } else {
+    agreement_.disagreeing_since.reset();
+    if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_) verdict = AgreementVerdict::agree;
   }
   agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
   agreement_.position_offset_m = vehicle_position_offset_m_;
@@ -214,13 +248,45 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
   }
 }
 
-bool VehicleState::on_tick(HostTime now) {
-  if (link_ == LinkState::alive && last_heartbeat_ &&
+VehicleReaction VehicleState::on_tick(HostTime now) {
+  VehicleReaction reaction;
+  if (link_ == HeartbeatState::alive && last_heartbeat_ &&
       now - *last_heartbeat_ > kVehicleSilentAfter) {
-    link_ = LinkState::silent;
-    return true;
+    link_ = HeartbeatState::silent;
+    reaction.link_changed = true;
   }
-  return false;
+  // Only time with a live vehicle counts towards giving up the origin.
+  if (origin_ != OriginState::sending || link_ != HeartbeatState::alive) {
+    origin_since_.reset();
+  } else if (!origin_since_) {
+    origin_since_ = now;
+  } else if (now - *origin_since_ >= kOriginGiveUpAfter) {
+    origin_ = OriginState::unconfirmed;
+    origin_since_.reset();
+    reaction.origin_changed = true;
+  }
+  return reaction;
+}
+
+VehicleReaction VehicleState::on_reboot() {
+  VehicleReaction reaction;
+  reported_origin_.reset();
+  origin_since_.reset();  // a new 30 s from the next live heartbeat
+  if (config_.origin && origin_ != OriginState::sending) {
+    origin_ = OriginState::sending;
+    reaction.origin_changed = true;
+  }
+  return reaction;
+}
+
+VehicleReaction VehicleState::withhold_origin() {
+  VehicleReaction reaction;
+  if (origin_ == OriginState::sending) {
+    origin_ = OriginState::withheld;
+    origin_since_.reset();
+    reaction.origin_changed = true;
+  }
+  return reaction;
 }
 
 VehicleSnapshot VehicleState::snapshot() const {

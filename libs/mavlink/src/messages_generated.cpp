@@ -27,6 +27,7 @@ constexpr std::array<MessageInfo, kMessageCount> kInfos{{
     info_of<GlobalPositionInt>(),
     info_of<SetGpsGlobalOrigin>(),
     info_of<GpsGlobalOrigin>(),
+    info_of<RequestDataStream>(),
     info_of<CommandLong>(),
     info_of<CommandAck>(),
     info_of<GlobalVisionPositionEstimate>(),
@@ -35,6 +36,8 @@ constexpr std::array<MessageInfo, kMessageCount> kInfos{{
     info_of<Timesync>(),
     info_of<HilGps>(),
     info_of<AttPosMocap>(),
+    info_of<AutopilotVersion>(),
+    info_of<EkfStatusReport>(),
     info_of<EstimatorStatus>(),
     info_of<GpsInput>(),
     info_of<HomePosition>(),
@@ -112,36 +115,42 @@ const MessageInfo* find_message_info(std::uint32_t msgid) noexcept {
       return &kInfos[12];
     case 49:
       return &kInfos[13];
-    case 76:
+    case 66:
       return &kInfos[14];
-    case 77:
+    case 76:
       return &kInfos[15];
-    case 101:
+    case 77:
       return &kInfos[16];
-    case 102:
+    case 101:
       return &kInfos[17];
-    case 103:
+    case 102:
       return &kInfos[18];
-    case 111:
+    case 103:
       return &kInfos[19];
-    case 113:
+    case 111:
       return &kInfos[20];
-    case 138:
+    case 113:
       return &kInfos[21];
-    case 230:
+    case 138:
       return &kInfos[22];
-    case 232:
+    case 148:
       return &kInfos[23];
-    case 242:
+    case 193:
       return &kInfos[24];
-    case 245:
+    case 230:
       return &kInfos[25];
-    case 253:
+    case 232:
       return &kInfos[26];
-    case 256:
+    case 242:
       return &kInfos[27];
-    case 331:
+    case 245:
       return &kInfos[28];
+    case 253:
+      return &kInfos[29];
+    case 256:
+      return &kInfos[30];
+    case 331:
+      return &kInfos[31];
     default:
       return nullptr;
   }
@@ -170,6 +179,7 @@ std::optional<Message> make_message(std::string_view name) noexcept {
   if (name == GlobalPositionInt::kName) return GlobalPositionInt{};
   if (name == SetGpsGlobalOrigin::kName) return SetGpsGlobalOrigin{};
   if (name == GpsGlobalOrigin::kName) return GpsGlobalOrigin{};
+  if (name == RequestDataStream::kName) return RequestDataStream{};
   if (name == CommandLong::kName) return CommandLong{};
   if (name == CommandAck::kName) return CommandAck{};
   if (name == GlobalVisionPositionEstimate::kName) return GlobalVisionPositionEstimate{};
@@ -178,6 +188,8 @@ std::optional<Message> make_message(std::string_view name) noexcept {
   if (name == Timesync::kName) return Timesync{};
   if (name == HilGps::kName) return HilGps{};
   if (name == AttPosMocap::kName) return AttPosMocap{};
+  if (name == AutopilotVersion::kName) return AutopilotVersion{};
+  if (name == EkfStatusReport::kName) return EkfStatusReport{};
   if (name == EstimatorStatus::kName) return EstimatorStatus{};
   if (name == GpsInput::kName) return GpsInput{};
   if (name == HomePosition::kName) return HomePosition{};
@@ -218,6 +230,8 @@ std::optional<Message> make_message(std::uint32_t msgid) noexcept {
       return SetGpsGlobalOrigin{};
     case GpsGlobalOrigin::kId:
       return GpsGlobalOrigin{};
+    case RequestDataStream::kId:
+      return RequestDataStream{};
     case CommandLong::kId:
       return CommandLong{};
     case CommandAck::kId:
@@ -234,6 +248,10 @@ std::optional<Message> make_message(std::uint32_t msgid) noexcept {
       return HilGps{};
     case AttPosMocap::kId:
       return AttPosMocap{};
+    case AutopilotVersion::kId:
+      return AutopilotVersion{};
+    case EkfStatusReport::kId:
+      return EkfStatusReport{};
     case EstimatorStatus::kId:
       return EstimatorStatus{};
     case GpsInput::kId:
@@ -284,6 +302,8 @@ std::optional<Message> unpack_message(std::uint32_t msgid,
       return unpack_as<SetGpsGlobalOrigin>(payload);
     case GpsGlobalOrigin::kId:
       return unpack_as<GpsGlobalOrigin>(payload);
+    case RequestDataStream::kId:
+      return unpack_as<RequestDataStream>(payload);
     case CommandLong::kId:
       return unpack_as<CommandLong>(payload);
     case CommandAck::kId:
@@ -300,6 +320,10 @@ std::optional<Message> unpack_message(std::uint32_t msgid,
       return unpack_as<HilGps>(payload);
     case AttPosMocap::kId:
       return unpack_as<AttPosMocap>(payload);
+    case AutopilotVersion::kId:
+      return unpack_as<AutopilotVersion>(payload);
+    case EkfStatusReport::kId:
+      return unpack_as<EkfStatusReport>(payload);
     case EstimatorStatus::kId:
       return unpack_as<EstimatorStatus>(payload);
     case GpsInput::kId:

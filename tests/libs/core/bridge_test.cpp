@@ -6,6 +6,7 @@
 
 #include "mocaplink/mavlink/frame.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -21,6 +22,7 @@ namespace {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
+using namespace std::chrono_literals;
 
 const GeodeticPosition kOrigin{47.3977418, 8.5455938, 488.0};
 
@@ -227,10 +229,50 @@ TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAsAReset) {
   EXPECT_EQ(s.bodies[1].estimate.reset_counter, 1);
 }
 
+// Issue 27: a frame's age is judged from its capture, so a frame that continues the stream but
+// arrives late (a TCP backlog after a stall, a VRPN round held back, a replay behind schedule) is
+// as old as its capture however recently it arrived; a source restart is judged by arrival.
+TEST(BridgeFrames, FrameAgeCountsFromTheCaptureOfALateFrame) {
+  Bridge bridge = make_bridge(two_vehicles());
+  // Nothing to place the first frame by: its age is the time since it was received.
+  EXPECT_EQ(bridge.frame_age(frame_at(1, true, true), received_at(1), received_at(1) + 3ms),
+            milliseconds(3));
+  for (std::uint64_t n = 1; n <= 50; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
+  // On time: the source reports 2 ms of its own latency, and the least-delayed frames set the
+  // clocks' offset (their transport counts as none): 2 ms old when received, 3 ms 1 ms later.
+  EXPECT_EQ(bridge.frame_age(frame_at(51, true, true), received_at(51), received_at(51)),
+            milliseconds(2));
+  EXPECT_EQ(bridge.frame_age(frame_at(51, true, true), received_at(51), received_at(51) + 1ms),
+            milliseconds(3));
+  // The stream stalls for 600 ms and then frames 51.. arrive in a burst: received just now, but
+  // captured 600 ms before. The first is that old, a later one of the burst less so.
+  const HostTime burst = received_at(51) + 600ms;
+  EXPECT_EQ(bridge.frame_age(frame_at(51, true, true), burst, burst), milliseconds(602));
+  EXPECT_EQ(bridge.frame_age(frame_at(100, true, true), burst, burst), milliseconds(112));
+  // Waiting in the queue still counts when the capture says less (a frame received long ago).
+  EXPECT_EQ(bridge.frame_age(frame_at(51, true, true), received_at(51), received_at(51) + 400ms),
+            milliseconds(402));
+  // The source restarts (its clock starts again from frame 1): judged by arrival, not as 0.5 s old.
+  EXPECT_EQ(bridge.frame_age(frame_at(1, true, true), burst, burst + 2ms), milliseconds(2));
+  // A source clock that jumped forward (captured "after" now): by arrival, never negative.
+  EXPECT_EQ(bridge.frame_age(frame_at(5000, true, true), burst, burst + 2ms), milliseconds(2));
+  // Asking changes nothing: the next frame on time is still 2 ms old.
+  EXPECT_EQ(bridge.frame_age(frame_at(52, true, true), received_at(52), received_at(52)),
+            milliseconds(2));
+}
+
 TEST(BridgeVehicles, TimesyncReplyOriginAndHeartbeats) {
   Bridge bridge = make_bridge(two_vehicles());
-  // Tick at 100 s: a heartbeat per vehicle; SET_GPS_GLOBAL_ORIGIN only for the px4 vehicle.
-  BridgeOutput out = bridge.on_tick(HostTime{seconds(100)});
+  // Before the vehicle is heard: heartbeats, no origin (origin_gate).
+  BridgeOutput out = bridge.on_tick(HostTime{seconds(99)});
+  EXPECT_EQ(of_type<mavlink::Heartbeat>(out).size(), 2U);
+  EXPECT_TRUE(of_type<mavlink::SetGpsGlobalOrigin>(out).empty());
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = kMavAutopilotArdupilot;
+  bridge.on_vehicle_message(0, {1, 1, hb}, HostTime{seconds(99) + milliseconds(500)});
+  // Tick at 100 s: a heartbeat per vehicle; SET_GPS_GLOBAL_ORIGIN only for the vision vehicle.
+  out = bridge.on_tick(HostTime{seconds(100)});
   EXPECT_EQ(of_type<mavlink::Heartbeat>(out).size(), 2U);
   auto origins = of_type<mavlink::SetGpsGlobalOrigin>(out);
   ASSERT_EQ(origins.size(), 1U);
@@ -268,7 +310,113 @@ TEST(BridgeVehicles, TimesyncReplyOriginAndHeartbeats) {
   EXPECT_TRUE(bridge.on_vehicle_message(9, {1, 1, request}, HostTime{}).messages.empty());
 }
 
-TEST(BridgeVehicles, LinkStateAndAgreementEvents) {
+TEST(BridgeVehicles, ARebootedVehicleIsSentTheOriginAgain) {
+  // Seen against ArduCopter SITL: after the set-up's reboot the origin stayed "confirmed", none
+  // was sent, and the vehicle never armed ("PreArm: AHRS: waiting for home").
+  Bridge bridge = make_bridge(two_vehicles());
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = kMavAutopilotArdupilot;
+  const HostTime t0{seconds(100)};
+  bridge.on_vehicle_message(0, {1, 1, hb}, t0);
+  mavlink::GpsGlobalOrigin reported;
+  reported.latitude = 473977418;
+  reported.longitude = 85455938;
+  reported.altitude = 488000;
+  bridge.on_vehicle_message(0, {1, 1, reported}, t0);
+  mavlink::Attitude att;
+  att.time_boot_ms = 60'000;
+  bridge.on_vehicle_message(0, {1, 1, att}, t0);
+  EXPECT_TRUE(of_type<mavlink::SetGpsGlobalOrigin>(bridge.on_tick(t0)).empty());
+  // The boot clock goes back: a reboot. The next tick says so; the one after sends the origin.
+  att.time_boot_ms = 900;
+  bridge.on_vehicle_message(0, {1, 1, hb}, t0 + seconds(1));
+  bridge.on_vehicle_message(0, {1, 1, att}, t0 + seconds(1));
+  const BridgeOutput seen = bridge.on_tick(t0 + seconds(1));
+  const auto event = std::find_if(seen.events.begin(), seen.events.end(), [](const BridgeEvent& e) {
+    return e.kind == BridgeEventKind::origin_state;
+  });
+  ASSERT_NE(event, seen.events.end());
+  EXPECT_EQ(event->text, "origin sending: the vehicle rebooted and lost the origin it had");
+  EXPECT_EQ(bridge.snapshot(t0 + seconds(1)).vehicles[0].vehicle.origin, OriginState::sending);
+  const auto origins = of_type<mavlink::SetGpsGlobalOrigin>(bridge.on_tick(t0 + seconds(2)));
+  ASSERT_EQ(origins.size(), 1U);
+  EXPECT_EQ(origins[0].first, 0U);
+  EXPECT_EQ(origins[0].second.latitude, 473977418);
+}
+
+/// Ticks `bridge` 100 ms apart from `from` for `count` ticks, vehicle 0's PX4 heartbeat every
+/// 0.5 s, and its AUTOPILOT_VERSION (`version`, 0 = never) answered at the first request; returns
+/// the SET_GPS_GLOBAL_ORIGIN sent and the origin events.
+std::pair<std::size_t, std::vector<std::string>> px4_origin_run(Bridge& bridge, HostTime from,
+                                                                int count, std::uint32_t version) {
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = kMavAutopilotPx4;
+  std::size_t origins = 0;
+  std::vector<std::string> events;
+  for (int k = 0; k < count; ++k) {
+    const HostTime now = from + milliseconds(100 * k);
+    if (k % 5 == 0) bridge.on_vehicle_message(0, {1, 1, hb}, now);
+    const BridgeOutput out = bridge.on_tick(now);
+    origins += of_type<mavlink::SetGpsGlobalOrigin>(out).size();
+    for (const BridgeEvent& e : out.events) {
+      if (e.kind == BridgeEventKind::origin_state && e.vehicle == 0) events.push_back(e.text);
+    }
+    for (const auto& c : of_type<mavlink::CommandLong>(out)) {
+      if (c.first == 0 && c.second.command == 512 && version != 0) {  // REQUEST_MESSAGE
+        mavlink::AutopilotVersion v;
+        v.flight_sw_version = version;
+        bridge.on_vehicle_message(0, {1, 1, v}, now + milliseconds(20));
+      }
+    }
+  }
+  return {origins, events};
+}
+
+TEST(BridgeVehicles, Px4Before115IsNeverSentTheOrigin) {
+  // PX4 1.14.3 SITL without GPS took mocaplink's origin 1.2 s after boot, shifted its height
+  // estimate by the origin's altitude (32.34 m) and a 1 m Offboard hover climbed to 18.65 m.
+  const HostTime t0{seconds(100)};
+  {
+    Bridge bridge = make_bridge(two_vehicles());
+    const auto [origins, events] =
+        px4_origin_run(bridge, t0, 100, (1U << 24) | (14U << 16) | (3U << 8) | 255U);
+    EXPECT_EQ(origins, 0U);
+    ASSERT_EQ(events.size(), 1U);
+    EXPECT_EQ(events[0].rfind("origin withheld: PX4 1.14.3 is not sent the origin: before 1.15", 0),
+              0U)
+        << events[0];
+    EXPECT_EQ(bridge.snapshot(t0 + seconds(10)).vehicles[0].vehicle.origin, OriginState::withheld);
+    // It reboots: nothing was sent, so nothing was "lost"; the version decides again.
+    mavlink::Attitude att;
+    att.time_boot_ms = 60'000;
+    bridge.on_vehicle_message(0, {1, 1, att}, t0 + seconds(10));
+    att.time_boot_ms = 900;
+    bridge.on_vehicle_message(0, {1, 1, att}, t0 + seconds(11));
+    const auto [again, after] =
+        px4_origin_run(bridge, t0 + seconds(11), 60, (1U << 24) | (14U << 16) | (3U << 8) | 255U);
+    EXPECT_EQ(again, 0U);
+    for (const std::string& e : after) EXPECT_EQ(e.find("lost the origin"), std::string::npos) << e;
+    EXPECT_EQ(bridge.snapshot(t0 + seconds(17)).vehicles[0].vehicle.origin, OriginState::withheld);
+  }
+  {  // One that never says its version: the same, once it has been asked 3 times.
+    Bridge bridge = make_bridge(two_vehicles());
+    const auto [origins, events] = px4_origin_run(bridge, t0, 100, 0);
+    EXPECT_EQ(origins, 0U);
+    ASSERT_EQ(events.size(), 1U);
+    EXPECT_NE(events[0].find("PX4 of unknown version is not sent the origin"), std::string::npos);
+  }
+  {  // 1.15: sent, about once a second from the version's answer.
+    Bridge bridge = make_bridge(two_vehicles());
+    const auto [origins, events] = px4_origin_run(bridge, t0, 100, (1U << 24) | (15U << 16) | 255U);
+    EXPECT_GE(origins, 9U);
+    EXPECT_TRUE(events.empty());
+    EXPECT_EQ(bridge.snapshot(t0 + seconds(10)).vehicles[0].vehicle.origin, OriginState::sending);
+  }
+}
+
+TEST(BridgeVehicles, HeartbeatStateAndAgreementEvents) {
   Bridge bridge = make_bridge(two_vehicles());
   for (std::uint64_t n = 1; n <= 20; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
   mavlink::Heartbeat hb;
@@ -284,17 +432,125 @@ TEST(BridgeVehicles, LinkStateAndAgreementEvents) {
   pos.z = -3.0F;
   mavlink::Attitude att;
   att.yaw = static_cast<float>(std::numbers::pi / 2);
+  pos.time_boot_ms = 60'000;  // a vehicle up for a minute: past kAgreementSettle
+  att.time_boot_ms = 60'000;
   bridge.on_vehicle_message(0, {1, 1, pos}, received_at(20));
   out = bridge.on_vehicle_message(0, {1, 1, att}, received_at(20));
+  EXPECT_TRUE(out.events.empty());  // disagreeing, not yet for kAgreementHold
+  for (std::uint64_t n = 21; n <= 320; ++n)
+    bridge.on_frame(frame_at(n, true, true), received_at(n));
+  att.time_boot_ms += 3'000;
+  out = bridge.on_vehicle_message(0, {1, 1, att}, received_at(320));  // 3 s later: the verdict
   ASSERT_EQ(out.events.size(), 1U);
   EXPECT_EQ(out.events[0].kind, BridgeEventKind::agreement);
-  const auto agreement = bridge.snapshot(received_at(20)).vehicles[0].vehicle.agreement;
+  const auto agreement = bridge.snapshot(received_at(320)).vehicles[0].vehicle.agreement;
   EXPECT_EQ(agreement.verdict, AgreementVerdict::disagree);
   EXPECT_NEAR(*agreement.yaw_offset_deg, 90.0, 0.5);
   EXPECT_NEAR(*agreement.position_offset_m, 0.0, 1e-3);
   out = bridge.on_tick(received_at(20) + seconds(4));
   ASSERT_FALSE(out.events.empty());
   EXPECT_EQ(out.events[0].text, "link silent");
+}
+
+TEST(BridgeVehicles, ReadsTheSetUpAsTheVehicleAndAppliesOnlyOnRequest) {
+  // Issue 28: AUTOPILOT_VERSION and the profile's parameters are asked for through on_tick, with
+  // the vehicle's identity; answers come through on_vehicle_message; the list is in the snapshot;
+  // apply_setup writes only what was named.
+  Bridge bridge = make_bridge(two_vehicles());
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = kMavAutopilotArdupilot;
+  const HostTime t0{seconds(100)};
+  std::vector<std::string> reads;
+  std::size_t writes = 0;
+  const auto tick = [&](HostTime now) {
+    const BridgeOutput out = bridge.on_tick(now);
+    for (const auto& m : out.messages) {
+      if (const auto* r = std::get_if<mavlink::ParamRequestRead>(&m.message)) {
+        EXPECT_EQ(m.vehicle, 0U);
+        EXPECT_EQ(m.frame.bytes()[5], 1);    // from the vehicle's own sysid
+        EXPECT_EQ(m.frame.bytes()[6], 197);  // and our component
+        EXPECT_EQ(r->target_system, 1);
+        reads.emplace_back(r->param_id.begin(),
+                           std::find(r->param_id.begin(), r->param_id.end(), '\0'));
+        // The vehicle answers every read with 0 (ArduPilot: the value cast to float).
+        mavlink::ParamValue v;
+        v.param_id = r->param_id;
+        v.param_type = 2;  // INT8
+        bridge.on_vehicle_message(0, {1, 1, v}, now);
+      }
+      if (std::holds_alternative<mavlink::ParamSet>(m.message)) ++writes;
+    }
+  };
+  for (int k = 0; k <= 80; ++k) {
+    const HostTime now = t0 + milliseconds(100 * k);
+    if (k % 5 == 0) bridge.on_vehicle_message(0, {1, 1, hb}, now);
+    tick(now);
+  }
+  EXPECT_FALSE(reads.empty());
+  EXPECT_NE(std::find(reads.begin(), reads.end(), "VISO_TYPE"), reads.end());
+  const BridgeSnapshot snap = bridge.snapshot(t0 + seconds(8));
+  const VehicleSetupSnapshot& setup = snap.vehicles[0].setup;
+  EXPECT_EQ(setup.autopilot, AutopilotFamily::ardupilot);
+  EXPECT_EQ(setup.state, SetupState::blocked);                   // VISO_TYPE 0
+  EXPECT_EQ(snap.vehicles[1].setup.state, SetupState::waiting);  // no heartbeat from it
+  EXPECT_EQ(writes, 0U);
+  const std::vector<std::string> viso{"VISO_TYPE"};
+  EXPECT_FALSE(bridge.apply_setup(5, viso, t0 + seconds(8)).accepted);  // no such slot
+  EXPECT_TRUE(bridge.apply_setup(0, viso, t0 + seconds(8)).accepted);
+  for (int k = 81; k <= 85; ++k) tick(t0 + milliseconds(100 * k));
+  EXPECT_EQ(writes, 1U);
+}
+
+TEST(BridgeVehicles, AsksForWhatTheAgreementCheckNeedsAsTheVehicle) {
+  // Issue 31: the vehicle's ATTITUDE / LOCAL_POSITION_NED are asked for through on_tick, sent with
+  // the vehicle's identity, counted, logged as vehicle_streams events and shown in the snapshot.
+  Bridge bridge = make_bridge(two_vehicles());
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = kMavAutopilotArdupilot;
+  const HostTime t0{seconds(100)};
+  std::vector<std::pair<std::size_t, mavlink::CommandLong>> commands;
+  std::vector<BridgeEvent> events;
+  for (int k = 0; k <= 35; ++k) {  // 3.5 s of ticks; the vehicle's heartbeat every 0.5 s
+    const HostTime now = t0 + milliseconds(100 * k);
+    if (k % 5 == 0) bridge.on_vehicle_message(0, {1, 1, hb}, now);
+    const BridgeOutput out = bridge.on_tick(now);
+    for (const auto& c : of_type<mavlink::CommandLong>(out)) {
+      if (c.second.command == 511) commands.push_back(c);
+    }
+    for (const auto& m : out.messages) {
+      if (std::holds_alternative<mavlink::CommandLong>(m.message)) {
+        EXPECT_EQ(m.frame.bytes()[5], 1);    // from the vehicle's own sysid
+        EXPECT_EQ(m.frame.bytes()[6], 197);  // and our component
+      }
+    }
+    for (const BridgeEvent& e : out.events) {
+      if (e.kind == BridgeEventKind::vehicle_streams) events.push_back(e);
+    }
+  }
+  // Only vehicle 0 has a heartbeat; after the 3 s grace, ATTITUDE first.
+  ASSERT_EQ(commands.size(), 1U);
+  EXPECT_EQ(commands[0].first, 0U);
+  EXPECT_EQ(commands[0].second.param1, 30.0F);
+  EXPECT_EQ(commands[0].second.target_system, 1);
+  EXPECT_EQ(commands[0].second.target_component, 1);
+  ASSERT_EQ(events.size(), 1U);  // the ticks' stream events: what was asked, once
+  EXPECT_EQ(events[0].kind, BridgeEventKind::vehicle_streams);
+  EXPECT_EQ(events[0].subject, "quad");
+  EXPECT_EQ(events[0].text, "asking for ATTITUDE at 5 Hz (SET_MESSAGE_INTERVAL 30, 200000 us)");
+  // The ACK arrives through on_vehicle_message.
+  mavlink::CommandAck ack;
+  ack.command = 511;
+  ack.result = 0;
+  const BridgeOutput acked = bridge.on_vehicle_message(0, {1, 1, ack}, t0 + milliseconds(3600));
+  ASSERT_EQ(acked.events.size(), 1U);
+  EXPECT_EQ(acked.events[0].text, "the vehicle accepted SET_MESSAGE_INTERVAL for ATTITUDE");
+  const BridgeSnapshot snap = bridge.snapshot(t0 + milliseconds(3600));
+  EXPECT_EQ(snap.vehicles[0].streams[VehicleStream::attitude].state, StreamState::accepted);
+  EXPECT_EQ(snap.vehicles[0].sender.counters.interval_requests, 1U);
+  EXPECT_EQ(snap.vehicles[1].streams[VehicleStream::attitude].state, StreamState::idle);
+  EXPECT_EQ(snap.vehicles[1].sender.counters.interval_requests, 0U);
 }
 
 TEST(BridgeControl, RateMessagesPauseDisableAndWallClock) {

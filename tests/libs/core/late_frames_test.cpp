@@ -37,7 +37,7 @@ TEST(LateFrames, WarnsAtOnceThenAtMostEveryPeriodWithWhatWasSkippedSince) {
   const auto first = late.warning(t0 + 300ms);
   ASSERT_TRUE(first.has_value());
   EXPECT_EQ(first->skipped, 1u);
-  EXPECT_EQ(first->longest_wait, 300ms);
+  EXPECT_EQ(first->oldest, 300ms);
   EXPECT_FALSE(late.warning(t0 + 301ms).has_value());  // said already
 
   // Three more within the period: held back until it has passed, then all of them at once.
@@ -49,7 +49,7 @@ TEST(LateFrames, WarnsAtOnceThenAtMostEveryPeriodWithWhatWasSkippedSince) {
   const auto second = late.warning(t0 + 300ms + kLateWarningPeriod);
   ASSERT_TRUE(second.has_value());
   EXPECT_EQ(second->skipped, 3u);
-  EXPECT_EQ(second->longest_wait, 900ms);
+  EXPECT_EQ(second->oldest, 900ms);
   EXPECT_EQ(late.skipped(), 4u);
 
   // Quiet for longer than the period: the next skip is warned about at once, counted afresh.
@@ -58,7 +58,7 @@ TEST(LateFrames, WarnsAtOnceThenAtMostEveryPeriodWithWhatWasSkippedSince) {
   const auto third = late.warning(t0 + 61s + 260ms);
   ASSERT_TRUE(third.has_value());
   EXPECT_EQ(third->skipped, 1u);
-  EXPECT_EQ(third->longest_wait, 260ms);
+  EXPECT_EQ(third->oldest, 260ms);
 }
 
 }  // namespace

@@ -482,5 +482,27 @@ TEST(BuildersRequestOrigin, CommandLongFields) {
   EXPECT_EQ(m.target_component, 1);
 }
 
+TEST(BuildersStreamRequests, SetMessageIntervalAndRequestDataStreamOnTheWire) {
+  // Issue 31. Oracle: node-mavlink 2.3.0 (an independent implementation; mavlink-wire.md §9, none
+  // of its deviations apply here), serialize() of the same fields from sysid 1, compid 197:
+  //   CommandLong{targetSystem 1, targetComponent 1, command 511, confirmation 2, _param1 30,
+  //               _param2 200000}, seq 5;
+  //   RequestDataStream{targetSystem 1, targetComponent 1, reqStreamId 10, reqMessageRate 5,
+  //                     startStop 1}, seq 6.
+  const mavlink::CommandLong c = build_set_message_interval(30, 200'000, 1, 1, 2);
+  EXPECT_EQ(c.command, 511);
+  EXPECT_EQ(c.param1, 30.0F);
+  EXPECT_EQ(c.param2, 200'000.0F);
+  EXPECT_EQ(c.param3, 0.0F);
+  EXPECT_EQ(c.confirmation, 2);
+  EXPECT_EQ(hex(mavlink::encode(c, {.seq = 5, .sysid = 1, .compid = 197}).bytes()),
+            "fd2100000501c54c00000000f041005043480000000000000000000000000000000000000000ff01010102"
+            "6457");
+  const mavlink::RequestDataStream r = build_request_data_stream(10, 5, 1, 1);
+  EXPECT_EQ(r.start_stop, 1);
+  EXPECT_EQ(hex(mavlink::encode(r, {.seq = 6, .sysid = 1, .compid = 197}).bytes()),
+            "fd0600000601c5420000050001010a0102f6");
+}
+
 }  // namespace
 }  // namespace mocaplink::core

@@ -68,14 +68,22 @@ TEST(MessageTable, FrameSizesFollowTheMavlinkLengths) {
   EXPECT_EQ(max_frame_bytes(MessageKind::hil_gps), 10U + 39U + 2U);
   EXPECT_EQ(max_frame_bytes(MessageKind::local_position_ned), 10U + 28U + 2U);
   // classic at 10 Hz: (HIL_GPS 51 + LOCAL_POSITION_NED 40 + ATT_POS_MOCAP 132) × 10, plus
-  // HEARTBEAT 21, TIMESYNC 30 twice and SET_GPS_GLOBAL_ORIGIN 33 at 1 Hz.
-  EXPECT_DOUBLE_EQ(link_bytes_per_second(messages_for(Profile::classic), 10.0, false),
-                   (51.0 + 40.0 + 132.0) * 10.0 + 21.0 + 30.0 + 30.0 + 33.0);
+  // HEARTBEAT 21, TIMESYNC 30 twice and SET_GPS_GLOBAL_ORIGIN 33 at 1 Hz, plus the vehicle's
+  // ATTITUDE 40 and LOCAL_POSITION_NED 40 at 5 Hz (the agreement check's request) and
+  // ESTIMATOR_STATUS 54 (the larger of it and EKF_STATUS_REPORT 38) at 1 Hz (the set-up list's).
+  EXPECT_DOUBLE_EQ(
+      link_bytes_per_second(messages_for(Profile::classic), 10.0, false),
+      (51.0 + 40.0 + 132.0) * 10.0 + 21.0 + 30.0 + 30.0 + 33.0 + (40.0 + 40.0) * 5.0 + 54.0);
+  // Signed: every frame 13 bytes longer, the vehicle's too.
+  EXPECT_DOUBLE_EQ(link_bytes_per_second(messages_for(Profile::classic), 10.0, true) -
+                       link_bytes_per_second(messages_for(Profile::classic), 10.0, false),
+                   13.0 * (3 * 10 + 4 + 2 * 5 + 1));
   EXPECT_FALSE(serial_bandwidth_warning(Profile::classic, messages_for(Profile::classic), 10.0,
                                         false, 57600));
   EXPECT_EQ(serial_bandwidth_warning(Profile::px4, messages_for(Profile::px4), 100.0, false, 9600),
-            "profile px4 at 100 Hz needs up to 24614 bytes/s but 9600 baud carries 960: frames "
-            "will be dropped; lower rate_hz or raise the baud rate");
+            "profile px4 at 100 Hz needs up to 25068 bytes/s (with the vehicle's ATTITUDE and "
+            "LOCAL_POSITION_NED at 5 Hz and its estimator status at 1 Hz) but 9600 baud carries "
+            "960: frames will be dropped; lower rate_hz or raise the baud rate");
 }
 
 TEST(MessageTable, NamesListEveryKindInEnumOrder) {
@@ -84,7 +92,7 @@ TEST(MessageTable, NamesListEveryKindInEnumOrder) {
     EXPECT_EQ(static_cast<std::size_t>(message_kinds()[i]), i);
     EXPECT_EQ(to_string(message_kinds()[i]), message_kind_names()[i]);
   }
-  EXPECT_EQ(profile_names().size(), 6U);
+  EXPECT_EQ(profile_names().size(), 7U);
   EXPECT_TRUE(is_vision(MessageKind::att_pos_mocap));
   EXPECT_FALSE(is_vision(MessageKind::local_position_ned));
   EXPECT_FALSE(is_vision(MessageKind::hil_gps));

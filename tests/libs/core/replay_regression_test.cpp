@@ -126,8 +126,13 @@ std::vector<Script> vehicle_script() {
   origin.latitude = 401156786;
   origin.longitude = -882243507;
   origin.altitude = 222196;
-  mavlink::Attitude attitude;  // yaw 0: the circle-flying Body2 heads elsewhere → disagrees
+  // Yaw 0: the circle-flying Body2 heads elsewhere → disagreeing, but for less than
+  // kAgreementHold by the end of the recording: no verdict (vehicle_state.hpp). The vehicle has
+  // been up a minute (past kAgreementSettle).
+  mavlink::Attitude attitude;
+  attitude.time_boot_ms = 60'000;
   mavlink::LocalPositionNed local;
+  local.time_boot_ms = 60'000;
   return {
       {0.35, 0, {1, 1, px4}},   {0.45, 0, {1, 1, request}}, {0.55, 1, {2, 1, ardupilot}},
       {1.35, 0, {1, 1, px4}},   {1.55, 0, {1, 1, origin}},  {2.05, 0, {1, 1, attitude}},

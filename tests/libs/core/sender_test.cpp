@@ -78,6 +78,31 @@ TEST(SenderDecimation, FiftyFromTwoFortyOverTenSeconds) {
   }
 }
 
+TEST(SenderSendRate, TheFirstSnapshotAfterAStartReadsTheActualRate) {
+  // 240 Hz frames decimated to 50 Hz for 0.5 s, then one snapshot: ~50 Hz, whoever asks first
+  // (issue 29: the dashboard measured it between two of its own requests and read 0).
+  Sender sender(config({MessageKind::odometry}, 50.0));
+  std::vector<OutgoingMessage> out;
+  run_stream(sender, 240.0, 0.5, out);
+  const SenderSnapshot s = sender.snapshot(out.back().time);
+  EXPECT_EQ(s.counters.poses, count<mavlink::Odometry>(out));
+  EXPECT_NEAR(s.send_rate_hz, 50.0, 0.5);
+  // A due send counts once however many messages it holds (three here, as in classic).
+  Sender classic(config({MessageKind::vision_position_estimate, MessageKind::local_position_ned,
+                         MessageKind::att_pos_mocap},
+                        50.0));
+  std::vector<OutgoingMessage> classic_out;
+  SendContext ctx;
+  for (int k = 0; k <= 25; ++k) {
+    ctx.now = HostTime{milliseconds(20 * k)};
+    classic.on_estimate(tracked_at(SourceTime{milliseconds(20 * k)}), ctx, classic_out);
+  }
+  EXPECT_DOUBLE_EQ(classic.snapshot(HostTime{milliseconds(500)}).send_rate_hz, 50.0);
+  EXPECT_EQ(classic_out.size(), 3U * 26U);
+  // Nothing sent since t = 0.5 s: a second later the rate reads 0.
+  EXPECT_EQ(classic.snapshot(HostTime{milliseconds(1'501)}).send_rate_hz, 0.0);
+}
+
 TEST(SenderDecimation, ThirtyFromHundred) {
   Sender sender(config({MessageKind::odometry}, 30.0));
   std::vector<OutgoingMessage> out;
@@ -252,7 +277,7 @@ TEST(SenderDecimation, RuntimeRateChange) {
   EXPECT_TRUE(sender.set_rate_hz(10.0));
   run_stream(sender, 200.0, 5.0, out);
   EXPECT_NEAR(static_cast<double>(out.size()), 50.0, 1.0);
-  EXPECT_EQ(sender.snapshot().rate_hz, 10.0);
+  EXPECT_EQ(sender.snapshot(HostTime{}).rate_hz, 10.0);
 }
 
 TEST(SenderContent, VisionOnlyWhileTrackedGpsWithFixZeroWhenLost) {
@@ -272,7 +297,7 @@ TEST(SenderContent, VisionOnlyWhileTrackedGpsWithFixZeroWhenLost) {
   EXPECT_TRUE(out_px4.empty());
   ASSERT_EQ(out_gps.size(), 1U);
   EXPECT_EQ(std::get<mavlink::GpsInput>(out_gps[0].message).fix_type, 0);
-  EXPECT_EQ(px4.snapshot().counters.due_without_pose, 1U);
+  EXPECT_EQ(px4.snapshot(HostTime{}).counters.due_without_pose, 1U);
 
   // Tracking but occluded in this frame (prediction only): still no vision message.
   e.capture_time += seconds(1);
@@ -305,7 +330,7 @@ TEST(SenderContent, ImplausibleStateIsNeverSent) {
   e.pose_covariance(0, 0) = std::numeric_limits<double>::infinity();
   sender.on_estimate(e, ctx, out);
   EXPECT_TRUE(out.empty());
-  EXPECT_EQ(sender.snapshot().counters.implausible, 3U);
+  EXPECT_EQ(sender.snapshot(HostTime{}).counters.implausible, 3U);
 }
 
 TEST(SenderContent, ClassicSendsThreeMessagesWithTimes) {
@@ -425,7 +450,7 @@ TEST(SenderFrames, SignedFramesVerifyWithTheKey) {
   }
   // Timestamps strictly increase even with the same "now" (mavlink-wire.md §7.3).
   EXPECT_NE(out[0].frame.bytes()[22], out[1].frame.bytes()[22]);
-  EXPECT_TRUE(sender.snapshot().signing);
+  EXPECT_TRUE(sender.snapshot(HostTime{}).signing);
 }
 
 }  // namespace

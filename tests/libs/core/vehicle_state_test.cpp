@@ -1,4 +1,4 @@
-// VehicleState: heartbeat and link state, TIMESYNC answers and estimates, the origin state
+// VehicleState: heartbeats and HeartbeatState, TIMESYNC answers and estimates, the origin state
 // machine, and the agreement check (with a deliberate 90° yaw error).
 #include "mocaplink/core/vehicle_state.hpp"
 
@@ -47,7 +47,7 @@ VehicleState with_origin() {
 
 TEST(VehicleHeartbeat, ArmedModeAndSilence) {
   VehicleState v(VehicleStateConfig{});
-  EXPECT_EQ(v.link_state(), LinkState::waiting);
+  EXPECT_EQ(v.link_state(), HeartbeatState::waiting);
   auto r = v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotPx4, 128 | 1)),
                         HostTime{seconds(1)}, nullptr);
   EXPECT_TRUE(r.link_changed);
@@ -57,10 +57,10 @@ TEST(VehicleHeartbeat, ArmedModeAndSilence) {
   EXPECT_EQ(s.heartbeat->autopilot, 12);
   EXPECT_EQ(s.heartbeat->custom_mode, 0x00040000U);
   EXPECT_EQ(s.heartbeat->type, 2);
-  EXPECT_EQ(s.link, LinkState::alive);
-  EXPECT_FALSE(v.on_tick(HostTime{seconds(4)}));  // exactly 3 s: still alive
-  EXPECT_TRUE(v.on_tick(HostTime{seconds(4) + milliseconds(1)}));
-  EXPECT_EQ(v.link_state(), LinkState::silent);
+  EXPECT_EQ(s.link, HeartbeatState::alive);
+  EXPECT_FALSE(v.on_tick(HostTime{seconds(4)}).link_changed);  // exactly 3 s: still alive
+  EXPECT_TRUE(v.on_tick(HostTime{seconds(4) + milliseconds(1)}).link_changed);
+  EXPECT_EQ(v.link_state(), HeartbeatState::silent);
   r = v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotPx4, 0)), HostTime{seconds(5)},
                    nullptr);
   EXPECT_TRUE(r.link_changed);
@@ -74,7 +74,7 @@ TEST(VehicleHeartbeat, OthersDoNotCount) {
   v.on_message(from(255, 190, gcs), HostTime{}, nullptr);                   // a GCS
   v.on_message(from(1, 197, autopilot_heartbeat(8)), HostTime{}, nullptr);  // a companion
   v.on_message(from(2, 1, autopilot_heartbeat(3)), HostTime{}, nullptr);    // another vehicle
-  EXPECT_EQ(v.link_state(), LinkState::waiting);
+  EXPECT_EQ(v.link_state(), HeartbeatState::waiting);
   EXPECT_EQ(v.snapshot().counters.from_other_systems, 2U);
 }
 
@@ -155,6 +155,104 @@ TEST(VehicleOrigin, ArdupilotMismatchIsAConflict) {
   EXPECT_NEAR(s.reported_origin->altitude_m, 584.0, 1e-9);
 }
 
+TEST(VehicleOrigin, GivenUpAfterThirtySecondsOfHeartbeats) {
+  // PX4 1.14 without GPS never reports an origin (setup_rules.hpp, unconfirmed_origin_advice).
+  VehicleState v = with_origin();
+  // Without a heartbeat, time does not count.
+  for (int s = 0; s <= 60; ++s) EXPECT_FALSE(v.on_tick(HostTime{seconds(s)}).origin_changed);
+  EXPECT_EQ(v.origin_state(), OriginState::sending);
+  // Heartbeats from t = 100 s: 30 s later sending stops, once.
+  int changes = 0;
+  for (int ms = 100'000; ms <= 140'000; ms += 100) {
+    if (ms % 500 == 0) {
+      v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotPx4)), HostTime{milliseconds(ms)},
+                   nullptr);
+    }
+    if (v.on_tick(HostTime{milliseconds(ms)}).origin_changed) {
+      ++changes;
+      EXPECT_GE(ms, 100'000 + 30'000);
+      EXPECT_LE(ms, 100'000 + 30'100);
+    }
+  }
+  EXPECT_EQ(changes, 1);
+  EXPECT_EQ(v.origin_state(), OriginState::unconfirmed);
+  EXPECT_FALSE(v.wants_origin());
+  // A matching report later still confirms it.
+  v.on_message(from(1, 1, origin_report(473977418, 85455938, 488000)), HostTime{seconds(200)},
+               nullptr);
+  EXPECT_EQ(v.origin_state(), OriginState::confirmed);
+}
+
+TEST(VehicleOrigin, SilenceRestartsTheCount) {
+  VehicleState v = with_origin();
+  const auto beat = [&](int s) {
+    v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotPx4)), HostTime{seconds(s)}, nullptr);
+    v.on_tick(HostTime{seconds(s)});
+  };
+  for (int s = 0; s < 20; ++s) beat(s);
+  v.on_tick(HostTime{seconds(30)});  // silent: nothing for more than 3 s
+  for (int s = 40; s < 65; ++s) beat(s);
+  EXPECT_EQ(v.origin_state(), OriginState::sending);  // 20 s + 25 s, never 30 s in a row
+  for (int s = 65; s <= 71; ++s) beat(s);
+  EXPECT_EQ(v.origin_state(), OriginState::unconfirmed);
+}
+
+TEST(VehicleOrigin, ARebootSendsItAgainWhateverItsState) {
+  // Confirmed: ArduCopter SITL rebooted after a set-up lost its origin and never armed ("PreArm:
+  // AHRS: waiting for home") while mocaplink still said confirmed and sent nothing.
+  VehicleState v = with_origin();
+  v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotArdupilot)), HostTime{}, nullptr);
+  v.on_message(from(1, 1, origin_report(473977418, 85455938, 488000)), HostTime{}, nullptr);
+  ASSERT_EQ(v.origin_state(), OriginState::confirmed);
+  EXPECT_TRUE(v.on_reboot().origin_changed);
+  EXPECT_EQ(v.origin_state(), OriginState::sending);
+  EXPECT_TRUE(v.wants_origin());
+  EXPECT_FALSE(v.snapshot().reported_origin);  // the old boot's report is gone
+  EXPECT_FALSE(v.on_reboot().origin_changed);  // already sending: no event
+  // In conflict: a reboot is the remedy, so ours is sent again.
+  v.on_message(from(1, 1, origin_report(-353632620, 1491652300, 584000)), HostTime{}, nullptr);
+  ASSERT_EQ(v.origin_state(), OriginState::conflict);
+  EXPECT_TRUE(v.on_reboot().origin_changed);
+  EXPECT_EQ(v.origin_state(), OriginState::sending);
+  // Given up (PX4 1.14): another 30 s of sending after the reboot.
+  for (int ms = 0; ms <= 31'000; ms += 100) {
+    if (ms % 500 == 0) {
+      v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotPx4)), HostTime{milliseconds(ms)},
+                   nullptr);
+    }
+    v.on_tick(HostTime{milliseconds(ms)});
+  }
+  ASSERT_EQ(v.origin_state(), OriginState::unconfirmed);
+  EXPECT_TRUE(v.on_reboot().origin_changed);
+  EXPECT_EQ(v.origin_state(), OriginState::sending);
+  // Without an [origin] there is nothing to send, reboot or not.
+  VehicleState none(VehicleStateConfig{});
+  EXPECT_FALSE(none.on_reboot().origin_changed);
+  EXPECT_EQ(none.origin_state(), OriginState::not_needed);
+}
+
+TEST(VehicleOrigin, AWithheldOriginStaysWithheldUntilAReboot) {
+  VehicleState v = with_origin();
+  EXPECT_TRUE(v.withhold_origin().origin_changed);
+  EXPECT_EQ(v.origin_state(), OriginState::withheld);
+  EXPECT_FALSE(v.wants_origin());
+  EXPECT_FALSE(v.withhold_origin().origin_changed);  // once
+  // Another origin reported (a GPS fix of its own): still not ours to send.
+  v.on_message(from(1, 1, autopilot_heartbeat(kMavAutopilotPx4)), HostTime{}, nullptr);
+  v.on_message(from(1, 1, origin_report(1, 2, 3)), HostTime{}, nullptr);
+  EXPECT_EQ(v.origin_state(), OriginState::withheld);
+  // Ours reported after all: confirmed.
+  v.on_message(from(1, 1, origin_report(473977418, 85455938, 488000)), HostTime{}, nullptr);
+  EXPECT_EQ(v.origin_state(), OriginState::confirmed);
+  // A reboot starts over (the gate decides again); a confirmed one is never withheld.
+  EXPECT_FALSE(v.withhold_origin().origin_changed);
+  EXPECT_TRUE(v.on_reboot().origin_changed);
+  EXPECT_EQ(v.origin_state(), OriginState::sending);
+  VehicleState none(VehicleStateConfig{});
+  EXPECT_FALSE(none.withhold_origin().origin_changed);
+  EXPECT_EQ(none.origin_state(), OriginState::not_needed);
+}
+
 TEST(VehicleOrigin, NotNeededWithoutOrigin) {
   VehicleState v(VehicleStateConfig{});
   EXPECT_EQ(v.origin_state(), OriginState::not_needed);
@@ -172,21 +270,49 @@ BodyEstimate mocap_at(Eigen::Vector3d p, double yaw_rad) {
   return e;
 }
 
-mavlink::Attitude attitude(double yaw_rad) {
+/// A vehicle up for a minute unless told otherwise: past kAgreementSettle.
+constexpr std::uint32_t kSettledBootMs = 60'000;
+
+mavlink::Attitude attitude(double yaw_rad, std::uint32_t time_boot_ms = kSettledBootMs) {
   mavlink::Attitude a;
+  a.time_boot_ms = time_boot_ms;
   a.yaw = static_cast<float>(yaw_rad);
   return a;
 }
 
-mavlink::LocalPositionNed local(float x, float y, float z) {
+mavlink::LocalPositionNed local(float x, float y, float z,
+                                std::uint32_t time_boot_ms = kSettledBootMs) {
   mavlink::LocalPositionNed p;
+  p.time_boot_ms = time_boot_ms;
   p.x = x;
   p.y = y;
   p.z = z;
   return p;
 }
 
-TEST(VehicleAgreement, AgreesWithinThresholds) {
+HostTime at_ms(std::int64_t ms) {
+  return HostTime{milliseconds(ms)};
+}
+
+/// ATTITUDE (yaw) and LOCAL_POSITION_NED every 200 ms (the 5 Hz mocaplink asks for) from
+/// `from_ms` to `to_ms` of host time, the vehicle's boot clock `boot_offset_ms` behind; returns the
+/// host time (ms) of the first verdict change to `watch`, or −1.
+std::int64_t stream(VehicleState& v, const BodyEstimate& mocap, double yaw_rad, float y_m,
+                    std::int64_t from_ms, std::int64_t to_ms, std::int64_t boot_offset_ms,
+                    AgreementVerdict watch) {
+  std::int64_t first = -1;
+  for (std::int64_t t = from_ms; t <= to_ms; t += 200) {
+    const auto boot = static_cast<std::uint32_t>(t - boot_offset_ms);
+    for (const mavlink::Message& m : {mavlink::Message{attitude(yaw_rad, boot)},
+                                      mavlink::Message{local(0.0F, y_m, -1.0F, boot)}}) {
+      const auto r = v.on_message(from(1, 1, m), at_ms(t), &mocap);
+      if (first < 0 && r.agreement_changed && v.agreement().verdict == watch) first = t;
+    }
+  }
+  return first;
+}
+
+TEST(VehicleAgreement, AgreesWithinThresholdsAtOnce) {
   VehicleState v(VehicleStateConfig{});
   const auto mocap = mocap_at({1.0, 2.0, -0.5}, 10.0 * kPi / 180.0);
   v.on_message(from(1, 1, attitude(15.0 * kPi / 180.0)), HostTime{}, &mocap);
@@ -196,18 +322,97 @@ TEST(VehicleAgreement, AgreesWithinThresholds) {
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 5.0, 1e-4);
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.1, 1e-6);
+  EXPECT_FALSE(v.agreement().disagreeing_since);
+  EXPECT_FALSE(v.agreement().settling);
 }
 
-TEST(VehicleAgreement, DeliberateNinetyDegreeYawError) {
+TEST(VehicleAgreement, DeliberateNinetyDegreeYawErrorIsFlaggedAfterTheHold) {
   VehicleState v(VehicleStateConfig{});
   // The rigid body was created nose-left: mocap says north (0°), the vehicle says east (90°).
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
-  v.on_message(from(1, 1, local(0.0F, 0.05F, -1.0F)), HostTime{}, &mocap);
-  const auto r = v.on_message(from(1, 1, attitude(kPi / 2)), HostTime{seconds(1)}, &mocap);
-  EXPECT_TRUE(r.agreement_changed);
-  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
+  v.on_message(from(1, 1, local(0.0F, 0.05F, -1.0F)), at_ms(0), &mocap);
+  v.on_message(from(1, 1, attitude(kPi / 2)), at_ms(0), &mocap);
+  // The offsets show at once; the verdict waits for kAgreementHold.
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 90.0, 1e-4);
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.05, 1e-6);
+  EXPECT_EQ(v.agreement().disagreeing_since, at_ms(0));
+  const auto before = v.on_message(from(1, 1, attitude(kPi / 2)), at_ms(2'999), &mocap);
+  EXPECT_FALSE(before.agreement_changed);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);
+  const auto r = v.on_message(from(1, 1, attitude(kPi / 2)), at_ms(3'000), &mocap);
+  EXPECT_TRUE(r.agreement_changed);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
+  // A sustained one in a 5 Hz stream: flagged exactly kAgreementHold after it began.
+  VehicleState w(VehicleStateConfig{});
+  EXPECT_EQ(stream(w, mocap, kPi / 2, 0.0F, 10'000, 20'000, -60'000, AgreementVerdict::disagree),
+            10'000 + std::chrono::duration_cast<milliseconds>(kAgreementHold).count());
+}
+
+TEST(VehicleAgreement, ADisagreementShorterThanTheHoldNeverDisagrees) {
+  VehicleState v(VehicleStateConfig{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  // Agreeing, then 2.8 s of a 40° yaw jump (an EKF yaw reset), then agreeing again, twice.
+  for (int round = 0; round < 2; ++round) {
+    const std::int64_t t0 = round * 10'000;
+    EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, t0, t0 + 2'000, -60'000, AgreementVerdict::disagree), -1);
+    EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
+    EXPECT_EQ(stream(v, mocap, 40.0 * kPi / 180.0, 0.0F, t0 + 2'200, t0 + 5'000, -60'000,
+                     AgreementVerdict::disagree),
+              -1);
+    EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);  // not sure yet
+    EXPECT_EQ(v.agreement().disagreeing_since, at_ms(t0 + 2'200));
+    EXPECT_EQ(
+        stream(v, mocap, 0.0, 0.0F, t0 + 5'200, t0 + 9'800, -60'000, AgreementVerdict::disagree),
+        -1);
+    EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);  // agreeing again: at once
+    EXPECT_FALSE(v.agreement().disagreeing_since);
+  }
+}
+
+TEST(VehicleAgreement, AfterBootTheEstimateSettlesBeforeItIsCompared) {
+  // Issue 31: mocaplink on while the vehicle boots; its estimate is 90° and 1 m off for its first
+  // 10 s of uptime (not converged), then right. No disagree, no alert, at any moment.
+  VehicleState v(VehicleStateConfig{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  const std::int64_t boot = 5'000;  // host time of the vehicle's boot
+  EXPECT_EQ(stream(v, mocap, kPi / 2, 1.0F, boot + 1'000, boot + 10'000, boot,
+                   AgreementVerdict::disagree),
+            -1);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);
+  EXPECT_TRUE(v.agreement().settling);
+  EXPECT_FALSE(v.agreement().yaw_offset_deg);  // not compared, not shown
+  EXPECT_EQ(
+      stream(v, mocap, 0.0, 0.0F, boot + 10'200, boot + 14'800, boot, AgreementVerdict::disagree),
+      -1);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);
+  // From 15 s of uptime on the estimate is compared: it agrees at once.
+  const std::int64_t settled_ms =
+      boot + std::chrono::duration_cast<milliseconds>(kAgreementSettle).count();
+  EXPECT_EQ(
+      stream(v, mocap, 0.0, 0.0F, boot + 15'000, boot + 16'000, boot, AgreementVerdict::agree),
+      settled_ms);
+  EXPECT_FALSE(v.agreement().settling);
+}
+
+TEST(VehicleAgreement, ARealMistakeRightAfterBootIsFlaggedOnceSettledAndHeld) {
+  VehicleState v(VehicleStateConfig{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  // The body is defined 90° off: the vehicle boots at host time 0 and stays 90° off.
+  EXPECT_EQ(stream(v, mocap, kPi / 2, 0.0F, 1'000, 30'000, 0, AgreementVerdict::disagree),
+            std::chrono::duration_cast<milliseconds>(kAgreementSettle + kAgreementHold).count());
+}
+
+TEST(VehicleAgreement, ARebootRestartsTheCheck) {
+  VehicleState v(VehicleStateConfig{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  EXPECT_GE(stream(v, mocap, kPi / 2, 0.0F, 0, 5'000, -60'000, AgreementVerdict::disagree), 0);
+  // The vehicle reboots at 10 s (its boot clock starts again): unknown at once, not disagree.
+  const auto r = v.on_message(from(1, 1, attitude(kPi / 2, 300)), at_ms(10'300), &mocap);
+  EXPECT_TRUE(r.agreement_changed);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);
+  EXPECT_TRUE(v.agreement().settling);
+  EXPECT_FALSE(v.agreement().disagreeing_since);
 }
 
 TEST(VehicleAgreement, YawWrapsAcross180) {
@@ -225,14 +430,15 @@ TEST(VehicleAgreement, YawWrapsAcross180) {
 TEST(VehicleAgreement, PositionOffsetDisagreesAndLostMocapIsIgnored) {
   VehicleState v(VehicleStateConfig{});
   auto mocap = mocap_at({0.0, 0.0, 0.0}, 0.0);
-  v.on_message(from(1, 1, attitude(0.0)), HostTime{}, &mocap);
-  v.on_message(from(1, 1, local(0.0F, 0.4F, 0.0F)), HostTime{}, &mocap);
+  v.on_message(from(1, 1, attitude(0.0)), at_ms(0), &mocap);
+  v.on_message(from(1, 1, local(0.0F, 0.4F, 0.0F)), at_ms(0), &mocap);
+  v.on_message(from(1, 1, local(0.0F, 0.4F, 0.0F)), at_ms(3'000), &mocap);
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.4, 1e-6);
   mocap.state = TrackingState::lost;
-  v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), HostTime{}, &mocap);  // ignored
+  v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), at_ms(3'200), &mocap);  // ignored
   EXPECT_NEAR(*v.agreement().position_offset_m, 0.4, 1e-6);
-  v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), HostTime{}, nullptr);  // ignored
+  v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), at_ms(3'400), nullptr);  // ignored
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
 }
 

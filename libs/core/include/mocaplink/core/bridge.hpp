@@ -3,7 +3,7 @@
 //   Bridge bridge = *Bridge::make(config, start_time);
 //   out = bridge.on_frame(frame, received);                  // mocap frame → poses to send
 //   out = bridge.on_vehicle_message(i, message, received);   // vehicle i said something
-//   out = bridge.on_tick(now);                               // heartbeats, origin, link states
+//   out = bridge.on_tick(now);                  // heartbeats, origin, silence, stream requests
 //   for (auto& m : out.messages) link[m.vehicle].send(m.frame.bytes());
 //   for (auto& e : out.events) log(e);                       // rate-limit in the adapter
 //   snapshot = bridge.snapshot(now);                         // for the dashboard
@@ -37,6 +37,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -45,6 +46,7 @@
 #include "mocaplink/core/axis_mapping.hpp"
 #include "mocaplink/core/body_estimate.hpp"
 #include "mocaplink/core/geodesy.hpp"
+#include "mocaplink/core/latency_window.hpp"
 #include "mocaplink/core/message_builders.hpp"
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/profile.hpp"
@@ -53,7 +55,9 @@
 #include "mocaplink/core/station.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/core/tracker.hpp"
+#include "mocaplink/core/vehicle_setup.hpp"
 #include "mocaplink/core/vehicle_state.hpp"
+#include "mocaplink/core/vehicle_streams.hpp"
 
 namespace mocaplink::core {
 
@@ -114,9 +118,15 @@ enum class BridgeEventKind : std::uint8_t {
   body_tracking,  ///< a body (re)gained tracking (text: after how long / reset)
   body_lost,      ///< a body went LOST
   body_reset,     ///< a body's filter was re-initialised (reset_counter incremented)
-  vehicle_link,   ///< a vehicle's link state changed (alive / silent)
+  vehicle_link,   ///< a vehicle's heartbeat state changed (alive / silent)
   origin_state,   ///< a vehicle's origin state changed (confirmed / conflict / sending)
   agreement,      ///< a vehicle's agreement verdict changed
+  /// what was asked of a vehicle for the agreement check and the outcome (vehicle_streams.hpp):
+  /// a few per vehicle boot, never one per retransmission, so the log keeps every one
+  vehicle_streams,
+  /// the vehicle's set-up (vehicle_setup.hpp): its autopilot, the check list's verdict, writes
+  /// and their confirmation, its STATUSTEXT warnings
+  vehicle_setup,
 };
 [[nodiscard]] std::string_view to_string(BridgeEventKind kind);
 
@@ -150,6 +160,8 @@ struct VehicleStatus {
   bool enabled = true;
   SenderSnapshot sender;
   VehicleSnapshot vehicle;
+  VehicleStreamsSnapshot streams;  ///< ATTITUDE / LOCAL_POSITION_NED requests (agreement check)
+  VehicleSetupSnapshot setup;      ///< autopilot, parameters, STATUSTEXT, estimator, delay
 };
 
 /// Immutable copy of everything the dashboard shows.
@@ -170,6 +182,17 @@ class Bridge {
   /// (LOCAL_POSITION_NED time_boot_ms counts from it).
   [[nodiscard]] static std::variant<Bridge, BridgeConfigError> make(const BridgeConfig& config,
                                                                     HostTime start);
+
+  /// How old `frame`'s data is at `now` (it was received at `received`; nothing changes): the
+  /// time since its capture, placed on the host clock by the capture times of the frames before
+  /// it (CaptureTimeMapper, the offset of the least-delayed frames), and never less than the time
+  /// since it was received. A frame whose capture continues the stream but arrives late — a TCP
+  /// backlog after a network stall, a VRPN round held back, a replay behind its schedule — is as
+  /// old as its capture, however recently it arrived. Only the time since `received` counts for
+  /// the first frame, and for a frame whose capture time jumped back by more than
+  /// loss_timeout_ms (the source's clock started again: on_frame re-seeds from it) or lies ahead
+  /// of the clock (a source clock that jumped forward).
+  [[nodiscard]] Duration frame_age(const MocapFrame& frame, HostTime received, HostTime now) const;
 
   /// A mocap frame received at `received`.
   BridgeOutput on_frame(const MocapFrame& frame, HostTime received);
@@ -200,7 +223,8 @@ class Bridge {
   /// ignored).
   BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
                                   HostTime received);
-  /// Time passes: heartbeats, origin messages, TIMESYNC requests, link timeouts.
+  /// Time passes: heartbeats, origin messages, TIMESYNC requests, link timeouts, and the requests
+  /// for ATTITUDE / LOCAL_POSITION_NED (vehicle_streams.hpp) of enabled vehicles.
   BridgeOutput on_tick(HostTime now);
   /// The mocap source connected or went away (Station figures).
   void on_source_connection(bool connected);
@@ -214,6 +238,14 @@ class Bridge {
   bool set_rate_hz(std::size_t vehicle, double rate_hz);
   bool set_messages(std::size_t vehicle, const MessageSet& messages);
   bool set_paused(std::size_t vehicle, bool paused);
+
+  /// Writes the fixes of the named parameters to the vehicle in `slot` (VehicleSetup::apply: only
+  /// wrong items of its list as it stands, never while armed). The writes go out from the next
+  /// on_tick. An empty slot is refused.
+  SetupRequestResult apply_setup(std::size_t slot, std::span<const std::string> parameters,
+                                 HostTime now);
+  /// Asks the vehicle in `slot` to reboot (refused while armed); the command is in `out`.
+  SetupRequestResult reboot_vehicle(std::size_t slot, HostTime now, BridgeOutput& out);
 
   /// The vehicle's next signed frame uses a timestamp above `timestamp_10us`: its persisted value
   /// at start, or that of a correctly signed frame it sent us (mavlink-wire.md §7.3). False for
@@ -267,6 +299,9 @@ class Bridge {
     Sender sender;
     VehicleState state;
     bool sends_origin = false;
+    VehicleStreams streams;
+    VehicleSetup setup;
+    std::uint64_t reboots_seen = 0;  ///< streams' reboot count the setup last followed
   };
   Bridge(const BridgeConfig& config, HostTime start);
 
@@ -281,9 +316,19 @@ class Bridge {
   /// Body events (reset, lost, tracking) of the current frame, from each body's published state.
   void body_events(BridgeOutput& out);
   [[nodiscard]] std::optional<GpsTime> gps_time(HostTime t) const;
+  /// A capture-time step back larger than this is a restart of the source's clock, not a
+  /// reordered datagram (loss_timeout_ms).
+  [[nodiscard]] Duration max_capture_step_back() const;
   [[nodiscard]] std::uint64_t signing_now_10us(HostTime t) const;
   void vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,
                       BridgeOutput& out) const;
+  void stream_events(std::size_t index, std::vector<std::string>& notes, HostTime now,
+                     BridgeOutput& out,
+                     BridgeEventKind kind = BridgeEventKind::vehicle_streams) const;
+  /// What the set-up's delay recommendation measures for a vehicle now: the frames' median
+  /// capture age (capture_age_, computed once per tick) and what the vehicle's TIMESYNC says.
+  [[nodiscard]] DelayInputs delay_inputs(std::optional<double> capture_age_ms,
+                                         const VehicleSnapshot& heard) const;
 
   BridgeConfig config_;
   HostTime start_{};
@@ -300,6 +345,9 @@ class Bridge {
   bool frame_restarted_ = false;       // the current frame is the first after a source restart
   bool all_tracked_ = false;           // track_bodies() ran in this frame (asserted by track_body)
   std::uint64_t source_restarts_ = 0;
+  /// Capture → received of recent frames (received − the capture time placed on the host clock,
+  /// which includes the latency the source reports): the set-up's delay recommendation.
+  LatencyWindow capture_age_;
 };
 
 }  // namespace mocaplink::core

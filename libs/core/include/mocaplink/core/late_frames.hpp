@@ -1,12 +1,15 @@
 // LateFrames: whether a mocap frame is still worth turning into poses when the event loop gets to
-// it (issue 15). A frame waits in the hand-over queue between its source's thread and the loop,
-// normally for microseconds. When the machine cannot keep up (more vehicles than its cores can
-// send to, or a stall), the wait grows to the whole queue (256 frames, about 1 s at 240 Hz) and
-// every pose then sent is that old. Neither autopilot can be told to expect that: EKF2_EV_DELAY
-// is at most 300 ms and VISO_DELAY_MS at most 250 ms, and PX4 without timesync takes a pose as of
-// its arrival (protocols/autopilots.md §4). So a frame that waited longer than kMaxFrameWait is
-// skipped and counted, and the loop goes on with the fresher frames behind it: under overload the
-// poses that do leave stay young instead of all being a second old.
+// it (issues 15 and 27). Neither autopilot can be told to expect an old pose: EKF2_EV_DELAY is at
+// most 300 ms and VISO_DELAY_MS at most 250 ms, and PX4 without timesync takes a pose as of its
+// arrival (protocols/autopilots.md §4). A frame can be old for two reasons:
+// - it waited in the hand-over queue between its source's thread and the loop, normally for
+//   microseconds; when the machine cannot keep up (more vehicles than its cores can send to, or a
+//   stall) the wait grows to the whole queue (256 frames, about 1 s at 240 Hz);
+// - its source delivered it late: a TCP backlog after a network stall, a VRPN round completed only
+//   when a tracker's report finally came, a replay behind its schedule. Such a frame arrives now
+//   but was captured long ago (Bridge::frame_age says how long, from the source's own clock).
+// So a frame older than kMaxFrameWait when the loop takes it is skipped and counted, and the loop
+// goes on with the fresher frames behind it: the poses that do leave stay young.
 // Pure; time is passed in; one owner (the event loop).
 #pragma once
 
@@ -18,7 +21,8 @@
 
 namespace mocaplink::core {
 
-/// The longest a frame may wait between its arrival and the loop and still be sent.
+/// The oldest a frame may be when the loop takes it (since its capture, or since its arrival where
+/// the capture cannot be placed on the host clock) and still be sent.
 inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
 /// Skipped frames are warned about at most this often (the first at once).
 inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
@@ -26,7 +30,7 @@ inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
 /// Frames skipped since the previous warning.
 struct LateWarning {
   std::uint64_t skipped = 0;  ///< how many
-  Duration longest_wait{};    ///< the longest any of them had waited when it was skipped
+  Duration oldest{};          ///< the age of the oldest of them when it was skipped
 };
 
 class LateFrames {
@@ -34,9 +38,13 @@ class LateFrames {
   /// `max_wait` ≥ 0 (0: every frame that waited at all is late).
   explicit LateFrames(Duration max_wait = kMaxFrameWait) noexcept : max_wait_(max_wait) {}
 
-  /// True when a frame received at `received` has waited longer than max_wait by `now`: the
-  /// caller skips it, and it is counted. Exactly max_wait is still in time.
-  [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept;
+  /// True when a frame `age` old (Bridge::frame_age) is older than max_wait: the caller skips
+  /// it, and it is counted. Exactly max_wait is still in time.
+  [[nodiscard]] bool skip_if_late(Duration age) noexcept;
+  /// skip_if_late for a frame whose age is the time since it was received (no capture time).
+  [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
+    return skip_if_late(now - received);
+  }
   /// Frames skipped since construction.
   [[nodiscard]] std::uint64_t skipped() const noexcept { return skipped_; }
   /// What to warn about at `now`, if anything was skipped since the previous warning and that

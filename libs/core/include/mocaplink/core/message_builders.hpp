@@ -151,6 +151,26 @@ struct GpsContext {
 [[nodiscard]] mavlink::CommandLong build_request_gps_global_origin(std::uint8_t target_system,
                                                                    std::uint8_t target_component);
 
+/// COMMAND_LONG MAV_CMD_SET_MESSAGE_INTERVAL (511): param1 = `message_id`, param2 = `interval_us`
+/// (µs between messages; common.xml: -1 stops it, 0 restores the default rate), param3..7 0,
+/// `confirmation` 0 for the first transmission and incremented for each retransmission (MAVLink
+/// "Command Protocol"). The agreement check asks for ATTITUDE and LOCAL_POSITION_NED with it
+/// (vehicle_streams.hpp).
+[[nodiscard]] mavlink::CommandLong build_set_message_interval(std::uint32_t message_id,
+                                                              std::int32_t interval_us,
+                                                              std::uint8_t target_system,
+                                                              std::uint8_t target_component,
+                                                              std::uint8_t confirmation);
+
+/// REQUEST_DATA_STREAM (66, deprecated by common.xml but what ArduPilot's stream groups answer):
+/// `stream_id` (MAV_DATA_STREAM: EXTRA1 = 10 carries ATTITUDE, POSITION = 6 LOCAL_POSITION_NED on
+/// ArduPilot) at `rate_hz`, start_stop = 1. The fallback for an ArduPilot that refuses
+/// SET_MESSAGE_INTERVAL (vehicle_streams.hpp).
+[[nodiscard]] mavlink::RequestDataStream build_request_data_stream(std::uint8_t stream_id,
+                                                                   std::uint16_t rate_hz,
+                                                                   std::uint8_t target_system,
+                                                                   std::uint8_t target_component);
+
 // Field helpers, exposed for tests and docs/messages.md's worked example.
 
 /// Degrees → degE7, rounded half away from zero (never truncated: the original truncated).

@@ -13,6 +13,9 @@
 //   ardupilot-gps  GPS_INPUT                                    no (the first fix sets it, §3.5)
 //   classic        HIL_GPS, LOCAL_POSITION_NED, ATT_POS_MOCAP   no (as the original tool)
 //   custom         the configured list                          if it holds a vision message
+//   auto           ODOMETRY (as px4 and ardupilot: the same      until confirmed (origin set)
+//                  frame suits both); the set-up rules follow the vehicle's autopilot, from its
+//                  HEARTBEAT (vehicle_setup.hpp)
 // Every profile also sends HEARTBEAT at 1 Hz and answers TIMESYNC requests (§12 "Common").
 //
 // These are the only Profile / MessageKind types: the config parses straight into them and the
@@ -30,9 +33,17 @@
 namespace mocaplink::core {
 
 /// `profile = "..."` of a vehicle.
-enum class Profile : std::uint8_t { px4, ardupilot, px4_gps, ardupilot_gps, classic, custom };
+enum class Profile : std::uint8_t {
+  px4,
+  ardupilot,
+  px4_gps,
+  ardupilot_gps,
+  classic,
+  custom,
+  automatic,  ///< "auto": px4 or ardupilot, whichever the vehicle's heartbeat says it runs
+};
 
-/// "px4", "ardupilot", "px4-gps", "ardupilot-gps", "classic", "custom".
+/// "px4", "ardupilot", "px4-gps", "ardupilot-gps", "classic", "custom", "auto".
 [[nodiscard]] std::string_view to_string(Profile profile);
 /// Exactly the spellings of to_string; nullopt for anything else (the config reports errors).
 [[nodiscard]] std::optional<Profile> parse_profile(std::string_view text);
@@ -120,7 +131,9 @@ class MessageSet {
 
 /// Upper bound of the bytes per second a vehicle puts on its link: every message of `messages`
 /// at `rate_hz`, plus HEARTBEAT, a TIMESYNC request and reply and SET_GPS_GLOBAL_ORIGIN at 1 Hz
-/// each, every frame at its full MAVLink 2 size (and signature). Compared with a serial link's
+/// each, plus the ATTITUDE and LOCAL_POSITION_NED the agreement check asks the vehicle for at
+/// kStreamRateHz (vehicle_streams.hpp; the other direction, which a telemetry radio shares),
+/// every frame at its full MAVLink 2 size (and signature). Compared with a serial link's
 /// baud / 10 (serial_link_warning).
 [[nodiscard]] double link_bytes_per_second(const MessageSet& messages, double rate_hz,
                                            bool signed_frames);
@@ -129,9 +142,10 @@ class MessageSet {
 [[nodiscard]] double serial_bytes_per_second(std::uint32_t baud);
 
 /// The one warning for a vehicle whose messages need more than its serial link carries: "profile
-/// P at R Hz needs up to N bytes/s but B baud carries M: frames will be dropped; lower rate_hz or
-/// raise the baud rate"; nullopt when the link keeps up. The config (`check`) and the daemon
-/// print it with the vehicle's name in front.
+/// P at R Hz needs up to N bytes/s (with the vehicle's ATTITUDE and LOCAL_POSITION_NED at 5 Hz)
+/// but B baud carries M: frames will be dropped; lower rate_hz or raise the baud rate"; nullopt
+/// when the link keeps up. The config (`check`) and the daemon print it with the vehicle's name in
+/// front.
 [[nodiscard]] std::optional<std::string> serial_bandwidth_warning(Profile profile,
                                                                   const MessageSet& messages,
                                                                   double rate_hz,

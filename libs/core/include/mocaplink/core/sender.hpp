@@ -36,6 +36,7 @@
 #include "mocaplink/core/message_builders.hpp"
 #include "mocaplink/core/message_table.hpp"
 #include "mocaplink/core/profile.hpp"
+#include "mocaplink/core/rate_window.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/mavlink/messages.hpp"
@@ -53,6 +54,9 @@ inline constexpr double kMaxSenderRateHz = 500.0;
 inline constexpr Duration kHeartbeatPeriod = std::chrono::seconds(1);
 inline constexpr Duration kOriginPeriod = std::chrono::seconds(1);
 inline constexpr Duration kTimesyncRequestPeriod = std::chrono::seconds(1);
+/// The window SenderSnapshot::send_rate_hz is measured over (the Station's frame rate uses 1 s
+/// too).
+inline constexpr Duration kSendRateWindow = std::chrono::seconds(1);
 
 /// A due estimate with a non-finite value, a position beyond this (m) or a speed beyond
 /// kMaxPlausibleSpeedMps is not sent at all (counted in SenderCounters::implausible): no mocap
@@ -94,9 +98,14 @@ struct SendContext {
 /// Counters since creation.
 struct SenderCounters {
   std::array<std::uint64_t, kMessageKindCount> sent{};  ///< per MessageKind
+  /// Due sends that sent something (one per rate_hz slot, however many messages the profile puts
+  /// in it): what send_rate_hz counts, comparable with rate_hz.
+  std::uint64_t poses = 0;
   std::uint64_t heartbeats = 0;
-  std::uint64_t origins = 0;          ///< SET_GPS_GLOBAL_ORIGIN sent
-  std::uint64_t origin_requests = 0;  ///< REQUEST_MESSAGE(GPS_GLOBAL_ORIGIN) sent
+  std::uint64_t origins = 0;               ///< SET_GPS_GLOBAL_ORIGIN sent
+  std::uint64_t origin_requests = 0;       ///< REQUEST_MESSAGE(GPS_GLOBAL_ORIGIN) sent
+  std::uint64_t interval_requests = 0;     ///< SET_MESSAGE_INTERVAL sent (vehicle_streams.hpp)
+  std::uint64_t data_stream_requests = 0;  ///< REQUEST_DATA_STREAM sent (vehicle_streams.hpp)
   std::uint64_t timesync_replies = 0;
   std::uint64_t timesync_requests = 0;
   std::uint64_t due_without_pose = 0;  ///< due slots skipped: pose not valid (lost, occluded)
@@ -114,6 +123,9 @@ struct SenderSnapshot {
   bool paused = false;
   bool signing = false;
   std::optional<HostTime> last_pose_sent;  ///< host time of the latest due send with a message
+  /// Due sends with a message (SenderCounters::poses) per second over the kSendRateWindow before
+  /// the snapshot's time (rate_window.hpp): the actual pose rate, whoever asks and whenever.
+  double send_rate_hz = 0.0;
   SenderCounters counters;
 };
 
@@ -134,7 +146,9 @@ class Sender {
   void on_tick(HostTime now, std::uint64_t signing_now_10us, const GeodeticPosition* origin,
                bool timesync_request, std::vector<OutgoingMessage>& out);
 
-  /// Encodes any message with this Sender's identity and sequence (TIMESYNC replies, tests).
+  /// Encodes any message with this Sender's identity and sequence (TIMESYNC replies, the
+  /// requests of VehicleStreams, tests), counting TIMESYNC, SET_MESSAGE_INTERVAL and
+  /// REQUEST_DATA_STREAM.
   void send(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
             std::vector<OutgoingMessage>& out);
 
@@ -154,7 +168,8 @@ class Sender {
 
   [[nodiscard]] const SenderConfig& config() const { return config_; }
   [[nodiscard]] bool paused() const { return paused_; }
-  [[nodiscard]] SenderSnapshot snapshot() const;
+  /// The figures as of host time `now` (send_rate_hz is measured up to it).
+  [[nodiscard]] SenderSnapshot snapshot(HostTime now) const;
   /// The sequence number the next frame will carry.
   [[nodiscard]] std::uint8_t next_seq() const { return sequence_.peek_seq(); }
 
@@ -179,6 +194,7 @@ class Sender {
   std::optional<HostTime> next_origin_;
   std::optional<HostTime> next_timesync_;
   std::optional<HostTime> last_pose_sent_;
+  RateWindow pose_sends_{kSendRateWindow};  // host times of the due sends with a message
   SenderCounters counters_;
 };
 

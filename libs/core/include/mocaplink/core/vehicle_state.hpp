@@ -2,9 +2,9 @@
 // time they arrived (DESIGN.md data flow; protocols/autopilots.md §3.9–§3.11, §10 rule 4). Pure.
 //
 //   heartbeat   type, autopilot, armed (base_mode bit 7), custom_mode, system_status, last seen;
-//               link state silent after kVehicleSilentAfter without one. Only heartbeats from the
-//               vehicle's system id that are not a GCS (type 6) or a non-autopilot component
-//               (autopilot 8 INVALID) count.
+//               heartbeat state silent after kVehicleSilentAfter without one. Only heartbeats
+//               from the vehicle's system id that are not a GCS (type 6) or a non-autopilot
+//               component (autopilot 8 INVALID) count.
 //   TIMESYNC    requests (tc1 == 0) from anyone → answered at once (the caller sends the reply);
 //               responses to our own requests (ts1 equal to one we sent) → RTT and clock offset.
 //   origin      not_needed → (sending ⇄ mismatch) → confirmed | conflict. While sending, the
@@ -13,12 +13,30 @@
 //               stops. A different one from an ArduPilot vehicle (autopilot 3) is a conflict: its
 //               EKF3 origin cannot change until reboot (§3.9), so sending stops and the operator is
 //               told. From any other autopilot a mismatch keeps us sending (PX4 accepts a new
-//               origin and answers again).
+//               origin and answers again). Sending that the vehicle never confirms stops after
+//               kOriginGiveUpAfter of heartbeats (unconfirmed): PX4 1.14 without GPS stores the
+//               origin but never reports it (the set-up list explains it, vehicle_setup.hpp).
+//               A matching GPS_GLOBAL_ORIGIN later still confirms it.
 //   agreement   the vehicle's own ATTITUDE yaw and LOCAL_POSITION_NED against the mocap estimate
 //               of its body at the message's arrival: yaw offset (deg, vehicle − mocap, wrapped to
-//               (−180, 180]) and position offset (m, 3-D distance); agrees when both are within
-//               the thresholds (default 10°, 0.3 m). Catches a wrong axis mapping, a body not
-//               created nose-forward, or another vehicle's poses, before take-off.
+//               (−180, 180]) and position offset (m, 3-D distance). Catches a wrong axis mapping,
+//               a body not created nose-forward, or another vehicle's poses, before take-off.
+//               The verdict (docs/messages.md "Agreement"):
+//                 agree     at once, when both offsets are known and within the thresholds
+//                           (default 10°, 0.3 m);
+//                 disagree  only once every comparison for kAgreementHold (3 s) was beyond a
+//                           threshold: a vehicle's estimate jumps while its EKF aligns or resets
+//                           (a false alarm makes pilots ignore the real one); until then unknown,
+//                           with disagreeing_since set;
+//                 unknown   before both offsets are known, during a hold, and while the vehicle is
+//                           settling: a message stamped (time_boot_ms) in its first
+//                           kAgreementSettle (15 s) of uptime is not compared, and clears the
+//                           offsets — right after boot the estimate is not converged (issue 31:
+//                           6–10 s of false disagreement from a vehicle booted with mocaplink on),
+//                           and a reboot thus restarts the check. A vehicle that stamps every
+//                           message 0 is never compared (the dashboard says it settles).
+//               So a real mistake (a 90° mapping) is flagged kAgreementHold after the first
+//               comparison, at the earliest kAgreementSettle + kAgreementHold after boot.
 // Not thread-safe (one owner); snapshot() is a copy.
 #pragma once
 
@@ -35,8 +53,12 @@
 
 namespace mocaplink::core {
 
-/// No heartbeat for this long → the vehicle's link state is silent.
+/// No heartbeat for this long → the vehicle's heartbeat state is silent.
 inline constexpr Duration kVehicleSilentAfter = std::chrono::seconds(3);
+/// SET_GPS_GLOBAL_ORIGIN sent this long to a vehicle whose heartbeat is alive without a matching
+/// GPS_GLOBAL_ORIGIN: stop (OriginState::unconfirmed). 30 s is 30 tries at ~1 Hz; a vehicle that
+/// takes the origin answers within a second.
+inline constexpr Duration kOriginGiveUpAfter = std::chrono::seconds(30);
 /// MAV_AUTOPILOT_ARDUPILOTMEGA and MAV_AUTOPILOT_PX4.
 inline constexpr std::uint8_t kMavAutopilotArdupilot = 3;
 inline constexpr std::uint8_t kMavAutopilotPx4 = 12;
@@ -50,18 +72,20 @@ struct ReceivedMessage {
   mavlink::Message message;
 };
 
-enum class LinkState : std::uint8_t {
+enum class HeartbeatState : std::uint8_t {
   waiting,  ///< no heartbeat from the vehicle yet
   alive,    ///< heartbeat within kVehicleSilentAfter
   silent,   ///< heard before, nothing for kVehicleSilentAfter
 };
-[[nodiscard]] std::string_view to_string(LinkState state);
+[[nodiscard]] std::string_view to_string(HeartbeatState state);
 
 enum class OriginState : std::uint8_t {
-  not_needed,  ///< this vehicle's profile does not set the origin (or none is configured)
-  sending,     ///< SET_GPS_GLOBAL_ORIGIN ~1 Hz until the vehicle reports ours
-  confirmed,   ///< the vehicle reported our origin; nothing more is sent
-  conflict,    ///< ArduPilot reported another origin: cannot change until reboot; stopped
+  not_needed,   ///< this vehicle's profile does not set the origin (or none is configured)
+  sending,      ///< SET_GPS_GLOBAL_ORIGIN ~1 Hz until the vehicle reports ours
+  confirmed,    ///< the vehicle reported our origin; nothing more is sent
+  conflict,     ///< ArduPilot reported another origin: cannot change until reboot; stopped
+  unconfirmed,  ///< sent for kOriginGiveUpAfter, never confirmed: stopped (the list says why)
+  withheld,     ///< never sent this boot: a PX4 before 1.15 (setup_rules.hpp origin_gate)
 };
 [[nodiscard]] std::string_view to_string(OriginState state);
 
@@ -73,6 +97,13 @@ enum class AgreementVerdict : std::uint8_t {
 };
 /// "unknown", "agree", "disagree": the API's spellings (docs/api.md).
 [[nodiscard]] std::string_view to_string(AgreementVerdict verdict);
+
+/// The vehicle's estimate in its first this much uptime (time_boot_ms) is not compared: its EKF
+/// is still aligning (6–10 s of false disagreement seen after boot, issue 31; 15 s for margin).
+inline constexpr Duration kAgreementSettle = std::chrono::seconds(15);
+/// A disagreement becomes the verdict once it has lasted this long, every comparison beyond a
+/// threshold: longer than an estimator's reset transient, short enough to be told before take-off.
+inline constexpr Duration kAgreementHold = std::chrono::seconds(3);
 
 /// Thresholds of the agreement check (documented defaults; docs/messages.md "Agreement").
 struct AgreementThresholds {
@@ -110,6 +141,12 @@ struct Agreement {
   std::optional<double> yaw_offset_deg;     ///< vehicle yaw − mocap yaw, (−180, 180]
   std::optional<double> position_offset_m;  ///< |p_vehicle − p_mocap|, m
   std::optional<HostTime> updated;
+  /// The first comparison of the current run beyond a threshold (disagree once it has lasted
+  /// kAgreementHold); nullopt when the latest comparison was within both.
+  std::optional<HostTime> disagreeing_since;
+  /// The vehicle's latest ATTITUDE / LOCAL_POSITION_NED came in its first kAgreementSettle of
+  /// uptime: not compared (verdict unknown, offsets cleared).
+  bool settling = false;
 };
 
 struct VehicleCounters {
@@ -123,7 +160,7 @@ struct VehicleCounters {
 };
 
 struct VehicleSnapshot {
-  LinkState link = LinkState::waiting;
+  HeartbeatState link = HeartbeatState::waiting;
   std::optional<VehicleHeartbeat> heartbeat;
   std::optional<HostTime> last_heartbeat;
   std::optional<HostTime> last_message;
@@ -138,7 +175,7 @@ struct VehicleSnapshot {
 struct VehicleReaction {
   std::optional<mavlink::Timesync> timesync_reply;  ///< send at once (built with our clock)
   bool origin_changed = false;                      ///< origin state changed (event)
-  bool link_changed = false;                        ///< link state changed (event)
+  bool link_changed = false;                        ///< heartbeat state changed (event)
   bool agreement_changed = false;                   ///< verdict changed (event)
 };
 
@@ -151,8 +188,18 @@ class VehicleState {
   VehicleReaction on_message(const ReceivedMessage& message, HostTime now,
                              const BodyEstimate* mocap);
 
-  /// Time passes: updates the link state (alive → silent). Returns true if it changed.
-  bool on_tick(HostTime now);
+  /// Time passes: updates the heartbeat state (alive → silent) and gives up an origin the vehicle
+  /// never confirms (link_changed, origin_changed).
+  VehicleReaction on_tick(HostTime now);
+
+  /// The vehicle restarted (VehicleStreams saw its boot clock go back): the origin it had is gone
+  /// with its estimator, so ours is sent again, whether it was confirmed, in conflict (the remedy
+  /// the conflict advises) or given up; the origin it reported is forgotten (origin_changed).
+  VehicleReaction on_reboot();
+
+  /// The origin must not go to this vehicle this boot (setup_rules.hpp origin_gate): a `sending`
+  /// origin becomes `withheld` (origin_changed); a report of another origin leaves it so.
+  VehicleReaction withhold_origin();
 
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
   void on_timesync_request_sent(std::int64_t ts1_ns);
@@ -160,7 +207,11 @@ class VehicleState {
   /// Whether the Sender should keep sending SET_GPS_GLOBAL_ORIGIN.
   [[nodiscard]] bool wants_origin() const { return origin_ == OriginState::sending; }
   [[nodiscard]] OriginState origin_state() const { return origin_; }
-  [[nodiscard]] LinkState link_state() const { return link_; }
+  /// A heartbeat from the vehicle was heard (ever, this session).
+  [[nodiscard]] bool heard() const { return heartbeat_.has_value(); }
+  /// MAV_AUTOPILOT of the latest heartbeat (0 before the first).
+  [[nodiscard]] std::uint8_t autopilot() const { return heartbeat_ ? heartbeat_->autopilot : 0; }
+  [[nodiscard]] HeartbeatState link_state() const { return link_; }
   [[nodiscard]] const Agreement& agreement() const { return agreement_; }
   [[nodiscard]] const VehicleStateConfig& config() const { return config_; }
   [[nodiscard]] VehicleSnapshot snapshot() const;
@@ -170,14 +221,18 @@ class VehicleState {
   void on_timesync(const ReceivedMessage& message, HostTime now, VehicleReaction& reaction);
   void on_origin(const mavlink::GpsGlobalOrigin& origin, VehicleReaction& reaction);
   void update_agreement(HostTime now, VehicleReaction& reaction);
+  /// A vehicle estimate stamped `time_boot_ms` arrived: false (and the check reset) while the
+  /// vehicle is settling.
+  bool settled(std::uint32_t time_boot_ms, HostTime now, VehicleReaction& reaction);
 
   VehicleStateConfig config_;
-  LinkState link_ = LinkState::waiting;
+  HeartbeatState link_ = HeartbeatState::waiting;
   OriginState origin_ = OriginState::not_needed;
   std::optional<VehicleHeartbeat> heartbeat_;
   std::optional<HostTime> last_heartbeat_;
   std::optional<HostTime> last_message_;
   std::optional<GeodeticPosition> reported_origin_;
+  std::optional<HostTime> origin_since_;  ///< sending to a vehicle whose heartbeat is alive since
   std::optional<TimesyncEstimate> timesync_;
   std::array<std::int64_t, 8> pending_requests_{};
   std::size_t pending_next_ = 0;

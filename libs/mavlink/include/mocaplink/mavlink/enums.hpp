@@ -20,6 +20,53 @@ template <typename E>
   return static_cast<std::underlying_type_t<E>>(e);
 }
 
+/// EKF_STATUS_FLAGS
+enum class EkfStatusFlags : std::uint32_t {
+  ekf_attitude = 1u,
+  ekf_velocity_horiz = 2u,
+  ekf_velocity_vert = 4u,
+  ekf_pos_horiz_rel = 8u,
+  ekf_pos_horiz_abs = 16u,
+  ekf_pos_vert_abs = 32u,
+  ekf_pos_vert_agl = 64u,
+  ekf_const_pos_mode = 128u,
+  ekf_pred_pos_horiz_rel = 256u,
+  ekf_pred_pos_horiz_abs = 512u,
+  ekf_uninitialized = 1024u,
+  ekf_gps_glitch = 32768u,
+};
+
+/// XML name of the enumerator ("" for a value not in the definitions).
+[[nodiscard]] constexpr std::string_view to_string(EkfStatusFlags value) noexcept {
+  switch (value) {
+    case EkfStatusFlags::ekf_attitude:
+      return "EKF_ATTITUDE";
+    case EkfStatusFlags::ekf_velocity_horiz:
+      return "EKF_VELOCITY_HORIZ";
+    case EkfStatusFlags::ekf_velocity_vert:
+      return "EKF_VELOCITY_VERT";
+    case EkfStatusFlags::ekf_pos_horiz_rel:
+      return "EKF_POS_HORIZ_REL";
+    case EkfStatusFlags::ekf_pos_horiz_abs:
+      return "EKF_POS_HORIZ_ABS";
+    case EkfStatusFlags::ekf_pos_vert_abs:
+      return "EKF_POS_VERT_ABS";
+    case EkfStatusFlags::ekf_pos_vert_agl:
+      return "EKF_POS_VERT_AGL";
+    case EkfStatusFlags::ekf_const_pos_mode:
+      return "EKF_CONST_POS_MODE";
+    case EkfStatusFlags::ekf_pred_pos_horiz_rel:
+      return "EKF_PRED_POS_HORIZ_REL";
+    case EkfStatusFlags::ekf_pred_pos_horiz_abs:
+      return "EKF_PRED_POS_HORIZ_ABS";
+    case EkfStatusFlags::ekf_uninitialized:
+      return "EKF_UNINITIALIZED";
+    case EkfStatusFlags::ekf_gps_glitch:
+      return "EKF_GPS_GLITCH";
+  }
+  return "";
+}
+
 /// ESTIMATOR_STATUS_FLAGS
 enum class EstimatorStatusFlags : std::uint32_t {
   estimator_attitude = 1u,
@@ -738,6 +785,44 @@ enum class MavCmd : std::uint32_t {
   return "";
 }
 
+/// MAV_DATA_STREAM
+enum class MavDataStream : std::uint32_t {
+  all = 0u,
+  raw_sensors = 1u,
+  extended_status = 2u,
+  rc_channels = 3u,
+  raw_controller = 4u,
+  position = 6u,
+  extra1 = 10u,
+  extra2 = 11u,
+  extra3 = 12u,
+};
+
+/// XML name of the enumerator ("" for a value not in the definitions).
+[[nodiscard]] constexpr std::string_view to_string(MavDataStream value) noexcept {
+  switch (value) {
+    case MavDataStream::all:
+      return "MAV_DATA_STREAM_ALL";
+    case MavDataStream::raw_sensors:
+      return "MAV_DATA_STREAM_RAW_SENSORS";
+    case MavDataStream::extended_status:
+      return "MAV_DATA_STREAM_EXTENDED_STATUS";
+    case MavDataStream::rc_channels:
+      return "MAV_DATA_STREAM_RC_CHANNELS";
+    case MavDataStream::raw_controller:
+      return "MAV_DATA_STREAM_RAW_CONTROLLER";
+    case MavDataStream::position:
+      return "MAV_DATA_STREAM_POSITION";
+    case MavDataStream::extra1:
+      return "MAV_DATA_STREAM_EXTRA1";
+    case MavDataStream::extra2:
+      return "MAV_DATA_STREAM_EXTRA2";
+    case MavDataStream::extra3:
+      return "MAV_DATA_STREAM_EXTRA3";
+  }
+  return "";
+}
+
 /// MAV_ESTIMATOR_TYPE
 enum class MavEstimatorType : std::uint32_t {
   unknown = 0u,
@@ -951,6 +1036,71 @@ enum class MavParamType : std::uint32_t {
       return "MAV_PARAM_TYPE_REAL32";
     case MavParamType::real64:
       return "MAV_PARAM_TYPE_REAL64";
+  }
+  return "";
+}
+
+/// MAV_PROTOCOL_CAPABILITY
+enum class MavProtocolCapability : std::uint32_t {
+  mission_float = 1u,
+  param_float = 2u,
+  mission_int = 4u,
+  command_int = 8u,
+  param_encode_bytewise = 16u,
+  ftp = 32u,
+  set_attitude_target = 64u,
+  set_position_target_local_ned = 128u,
+  set_position_target_global_int = 256u,
+  terrain = 512u,
+  reserved3 = 1024u,
+  flight_termination = 2048u,
+  compass_calibration = 4096u,
+  mavlink2 = 8192u,
+  mission_fence = 16384u,
+  mission_rally = 32768u,
+  reserved2 = 65536u,
+  param_encode_c_cast = 131072u,
+};
+
+/// XML name of the enumerator ("" for a value not in the definitions).
+[[nodiscard]] constexpr std::string_view to_string(MavProtocolCapability value) noexcept {
+  switch (value) {
+    case MavProtocolCapability::mission_float:
+      return "MAV_PROTOCOL_CAPABILITY_MISSION_FLOAT";
+    case MavProtocolCapability::param_float:
+      return "MAV_PROTOCOL_CAPABILITY_PARAM_FLOAT";
+    case MavProtocolCapability::mission_int:
+      return "MAV_PROTOCOL_CAPABILITY_MISSION_INT";
+    case MavProtocolCapability::command_int:
+      return "MAV_PROTOCOL_CAPABILITY_COMMAND_INT";
+    case MavProtocolCapability::param_encode_bytewise:
+      return "MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_BYTEWISE";
+    case MavProtocolCapability::ftp:
+      return "MAV_PROTOCOL_CAPABILITY_FTP";
+    case MavProtocolCapability::set_attitude_target:
+      return "MAV_PROTOCOL_CAPABILITY_SET_ATTITUDE_TARGET";
+    case MavProtocolCapability::set_position_target_local_ned:
+      return "MAV_PROTOCOL_CAPABILITY_SET_POSITION_TARGET_LOCAL_NED";
+    case MavProtocolCapability::set_position_target_global_int:
+      return "MAV_PROTOCOL_CAPABILITY_SET_POSITION_TARGET_GLOBAL_INT";
+    case MavProtocolCapability::terrain:
+      return "MAV_PROTOCOL_CAPABILITY_TERRAIN";
+    case MavProtocolCapability::reserved3:
+      return "MAV_PROTOCOL_CAPABILITY_RESERVED3";
+    case MavProtocolCapability::flight_termination:
+      return "MAV_PROTOCOL_CAPABILITY_FLIGHT_TERMINATION";
+    case MavProtocolCapability::compass_calibration:
+      return "MAV_PROTOCOL_CAPABILITY_COMPASS_CALIBRATION";
+    case MavProtocolCapability::mavlink2:
+      return "MAV_PROTOCOL_CAPABILITY_MAVLINK2";
+    case MavProtocolCapability::mission_fence:
+      return "MAV_PROTOCOL_CAPABILITY_MISSION_FENCE";
+    case MavProtocolCapability::mission_rally:
+      return "MAV_PROTOCOL_CAPABILITY_MISSION_RALLY";
+    case MavProtocolCapability::reserved2:
+      return "MAV_PROTOCOL_CAPABILITY_RESERVED2";
+    case MavProtocolCapability::param_encode_c_cast:
+      return "MAV_PROTOCOL_CAPABILITY_PARAM_ENCODE_C_CAST";
   }
   return "";
 }

@@ -1006,6 +1006,60 @@ void for_each_field(M& m, F&& f) {
   f(M::kFields[3], m.time_usec);
 }
 
+/// REQUEST_DATA_STREAM (#66).
+struct RequestDataStream {
+  static constexpr std::uint32_t kId = 66;
+  static constexpr std::string_view kName = "REQUEST_DATA_STREAM";
+  static constexpr std::uint8_t kCrcExtra = 148;
+  static constexpr std::uint8_t kBaseLength = 6;
+  static constexpr std::uint8_t kMaxLength = 6;
+  static constexpr std::array<FieldInfo, 5> kFields{{
+      {"req_message_rate", FieldType::u16, 1, 0, false, "Hz", ""},
+      {"target_system", FieldType::u8, 1, 2, false, "", ""},
+      {"target_component", FieldType::u8, 1, 3, false, "", ""},
+      {"req_stream_id", FieldType::u8, 1, 4, false, "", "MAV_DATA_STREAM"},
+      {"start_stop", FieldType::u8, 1, 5, false, "", ""},
+  }};
+
+  std::uint16_t req_message_rate{};  ///< [Hz]; wire offset 0
+  std::uint8_t target_system{};      ///< wire offset 2
+  std::uint8_t target_component{};   ///< wire offset 3
+  std::uint8_t req_stream_id{};      ///< enum MAV_DATA_STREAM; wire offset 4
+  std::uint8_t start_stop{};         ///< wire offset 5
+
+  /// Writes every field (untruncated) at its wire offset.
+  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
+    detail::store(p, 0, req_message_rate);
+    detail::store(p, 2, target_system);
+    detail::store(p, 3, target_component);
+    detail::store(p, 4, req_stream_id);
+    detail::store(p, 5, start_stop);
+  }
+  /// Reads every field from a full-length (zero-filled) payload.
+  [[nodiscard]] static RequestDataStream unpack(
+      std::span<const std::uint8_t, kMaxLength> p) noexcept {
+    RequestDataStream m;
+    detail::load(p, 0, m.req_message_rate);
+    detail::load(p, 2, m.target_system);
+    detail::load(p, 3, m.target_component);
+    detail::load(p, 4, m.req_stream_id);
+    detail::load(p, 5, m.start_stop);
+    return m;
+  }
+  bool operator==(const RequestDataStream&) const = default;
+};
+
+/// Calls f(const FieldInfo&, field&) for each field of a RequestDataStream in wire order.
+template <typename M, typename F>
+requires std::same_as<std::remove_const_t<M>, RequestDataStream>
+void for_each_field(M& m, F&& f) {
+  f(M::kFields[0], m.req_message_rate);
+  f(M::kFields[1], m.target_system);
+  f(M::kFields[2], m.target_component);
+  f(M::kFields[3], m.req_stream_id);
+  f(M::kFields[4], m.start_stop);
+}
+
 /// COMMAND_LONG (#76).
 struct CommandLong {
   static constexpr std::uint32_t kId = 76;
@@ -1567,6 +1621,160 @@ void for_each_field(M& m, F&& f) {
   f(M::kFields[5], m.covariance);
 }
 
+/// AUTOPILOT_VERSION (#148).
+struct AutopilotVersion {
+  static constexpr std::uint32_t kId = 148;
+  static constexpr std::string_view kName = "AUTOPILOT_VERSION";
+  static constexpr std::uint8_t kCrcExtra = 178;
+  static constexpr std::uint8_t kBaseLength = 60;
+  static constexpr std::uint8_t kMaxLength = 78;
+  static constexpr std::array<FieldInfo, 12> kFields{{
+      {"capabilities", FieldType::u64, 1, 0, false, "", "MAV_PROTOCOL_CAPABILITY"},
+      {"uid", FieldType::u64, 1, 8, false, "", ""},
+      {"flight_sw_version", FieldType::u32, 1, 16, false, "", ""},
+      {"middleware_sw_version", FieldType::u32, 1, 20, false, "", ""},
+      {"os_sw_version", FieldType::u32, 1, 24, false, "", ""},
+      {"board_version", FieldType::u32, 1, 28, false, "", ""},
+      {"vendor_id", FieldType::u16, 1, 32, false, "", ""},
+      {"product_id", FieldType::u16, 1, 34, false, "", ""},
+      {"flight_custom_version", FieldType::u8, 8, 36, false, "", ""},
+      {"middleware_custom_version", FieldType::u8, 8, 44, false, "", ""},
+      {"os_custom_version", FieldType::u8, 8, 52, false, "", ""},
+      {"uid2", FieldType::u8, 18, 60, true, "", ""},
+  }};
+
+  std::uint64_t capabilities{};           ///< enum MAV_PROTOCOL_CAPABILITY; wire offset 0
+  std::uint64_t uid{};                    ///< wire offset 8
+  std::uint32_t flight_sw_version{};      ///< wire offset 16
+  std::uint32_t middleware_sw_version{};  ///< wire offset 20
+  std::uint32_t os_sw_version{};          ///< wire offset 24
+  std::uint32_t board_version{};          ///< wire offset 28
+  std::uint16_t vendor_id{};              ///< wire offset 32
+  std::uint16_t product_id{};             ///< wire offset 34
+  std::array<std::uint8_t, 8> flight_custom_version{};      ///< wire offset 36
+  std::array<std::uint8_t, 8> middleware_custom_version{};  ///< wire offset 44
+  std::array<std::uint8_t, 8> os_custom_version{};          ///< wire offset 52
+  std::array<std::uint8_t, 18>
+      uid2{};  ///< extension (MAVLink 2 only; 0 when absent); wire offset 60
+
+  /// Writes every field (untruncated) at its wire offset.
+  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
+    detail::store(p, 0, capabilities);
+    detail::store(p, 8, uid);
+    detail::store(p, 16, flight_sw_version);
+    detail::store(p, 20, middleware_sw_version);
+    detail::store(p, 24, os_sw_version);
+    detail::store(p, 28, board_version);
+    detail::store(p, 32, vendor_id);
+    detail::store(p, 34, product_id);
+    detail::store(p, 36, flight_custom_version);
+    detail::store(p, 44, middleware_custom_version);
+    detail::store(p, 52, os_custom_version);
+    detail::store(p, 60, uid2);
+  }
+  /// Reads every field from a full-length (zero-filled) payload.
+  [[nodiscard]] static AutopilotVersion unpack(
+      std::span<const std::uint8_t, kMaxLength> p) noexcept {
+    AutopilotVersion m;
+    detail::load(p, 0, m.capabilities);
+    detail::load(p, 8, m.uid);
+    detail::load(p, 16, m.flight_sw_version);
+    detail::load(p, 20, m.middleware_sw_version);
+    detail::load(p, 24, m.os_sw_version);
+    detail::load(p, 28, m.board_version);
+    detail::load(p, 32, m.vendor_id);
+    detail::load(p, 34, m.product_id);
+    detail::load(p, 36, m.flight_custom_version);
+    detail::load(p, 44, m.middleware_custom_version);
+    detail::load(p, 52, m.os_custom_version);
+    detail::load(p, 60, m.uid2);
+    return m;
+  }
+  bool operator==(const AutopilotVersion&) const = default;
+};
+
+/// Calls f(const FieldInfo&, field&) for each field of a AutopilotVersion in wire order.
+template <typename M, typename F>
+requires std::same_as<std::remove_const_t<M>, AutopilotVersion>
+void for_each_field(M& m, F&& f) {
+  f(M::kFields[0], m.capabilities);
+  f(M::kFields[1], m.uid);
+  f(M::kFields[2], m.flight_sw_version);
+  f(M::kFields[3], m.middleware_sw_version);
+  f(M::kFields[4], m.os_sw_version);
+  f(M::kFields[5], m.board_version);
+  f(M::kFields[6], m.vendor_id);
+  f(M::kFields[7], m.product_id);
+  f(M::kFields[8], m.flight_custom_version);
+  f(M::kFields[9], m.middleware_custom_version);
+  f(M::kFields[10], m.os_custom_version);
+  f(M::kFields[11], m.uid2);
+}
+
+/// EKF_STATUS_REPORT (#193).
+struct EkfStatusReport {
+  static constexpr std::uint32_t kId = 193;
+  static constexpr std::string_view kName = "EKF_STATUS_REPORT";
+  static constexpr std::uint8_t kCrcExtra = 71;
+  static constexpr std::uint8_t kBaseLength = 22;
+  static constexpr std::uint8_t kMaxLength = 26;
+  static constexpr std::array<FieldInfo, 7> kFields{{
+      {"velocity_variance", FieldType::f32, 1, 0, false, "", ""},
+      {"pos_horiz_variance", FieldType::f32, 1, 4, false, "", ""},
+      {"pos_vert_variance", FieldType::f32, 1, 8, false, "", ""},
+      {"compass_variance", FieldType::f32, 1, 12, false, "", ""},
+      {"terrain_alt_variance", FieldType::f32, 1, 16, false, "", ""},
+      {"flags", FieldType::u16, 1, 20, false, "", "EKF_STATUS_FLAGS"},
+      {"airspeed_variance", FieldType::f32, 1, 22, true, "", ""},
+  }};
+
+  float velocity_variance{};     ///< wire offset 0
+  float pos_horiz_variance{};    ///< wire offset 4
+  float pos_vert_variance{};     ///< wire offset 8
+  float compass_variance{};      ///< wire offset 12
+  float terrain_alt_variance{};  ///< wire offset 16
+  std::uint16_t flags{};         ///< enum EKF_STATUS_FLAGS; wire offset 20
+  float airspeed_variance{};     ///< extension (MAVLink 2 only; 0 when absent); wire offset 22
+
+  /// Writes every field (untruncated) at its wire offset.
+  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
+    detail::store(p, 0, velocity_variance);
+    detail::store(p, 4, pos_horiz_variance);
+    detail::store(p, 8, pos_vert_variance);
+    detail::store(p, 12, compass_variance);
+    detail::store(p, 16, terrain_alt_variance);
+    detail::store(p, 20, flags);
+    detail::store(p, 22, airspeed_variance);
+  }
+  /// Reads every field from a full-length (zero-filled) payload.
+  [[nodiscard]] static EkfStatusReport unpack(
+      std::span<const std::uint8_t, kMaxLength> p) noexcept {
+    EkfStatusReport m;
+    detail::load(p, 0, m.velocity_variance);
+    detail::load(p, 4, m.pos_horiz_variance);
+    detail::load(p, 8, m.pos_vert_variance);
+    detail::load(p, 12, m.compass_variance);
+    detail::load(p, 16, m.terrain_alt_variance);
+    detail::load(p, 20, m.flags);
+    detail::load(p, 22, m.airspeed_variance);
+    return m;
+  }
+  bool operator==(const EkfStatusReport&) const = default;
+};
+
+/// Calls f(const FieldInfo&, field&) for each field of a EkfStatusReport in wire order.
+template <typename M, typename F>
+requires std::same_as<std::remove_const_t<M>, EkfStatusReport>
+void for_each_field(M& m, F&& f) {
+  f(M::kFields[0], m.velocity_variance);
+  f(M::kFields[1], m.pos_horiz_variance);
+  f(M::kFields[2], m.pos_vert_variance);
+  f(M::kFields[3], m.compass_variance);
+  f(M::kFields[4], m.terrain_alt_variance);
+  f(M::kFields[5], m.flags);
+  f(M::kFields[6], m.airspeed_variance);
+}
+
 /// ESTIMATOR_STATUS (#230).
 struct EstimatorStatus {
   static constexpr std::uint32_t kId = 230;
@@ -2110,13 +2318,13 @@ void for_each_field(M& m, F&& f) {
 using Message =
     std::variant<Heartbeat, SysStatus, SystemTime, Ping, ParamRequestRead, ParamValue, ParamSet,
                  GpsRawInt, Attitude, AttitudeQuaternion, LocalPositionNed, GlobalPositionInt,
-                 SetGpsGlobalOrigin, GpsGlobalOrigin, CommandLong, CommandAck,
+                 SetGpsGlobalOrigin, GpsGlobalOrigin, RequestDataStream, CommandLong, CommandAck,
                  GlobalVisionPositionEstimate, VisionPositionEstimate, VisionSpeedEstimate,
-                 Timesync, HilGps, AttPosMocap, EstimatorStatus, GpsInput, HomePosition,
-                 ExtendedSysState, Statustext, SetupSigning, Odometry>;
+                 Timesync, HilGps, AttPosMocap, AutopilotVersion, EkfStatusReport, EstimatorStatus,
+                 GpsInput, HomePosition, ExtendedSysState, Statustext, SetupSigning, Odometry>;
 
 /// Number of known messages and the largest payload among them.
-inline constexpr std::size_t kMessageCount = 29;
+inline constexpr std::size_t kMessageCount = 32;
 inline constexpr std::size_t kLargestPayload = 233;
 
 /// The definition of message `msgid`, or nullptr if mocaplink does not know it. O(1).
