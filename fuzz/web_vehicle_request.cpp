@@ -1,7 +1,7 @@
-// Fuzz target for the dashboard's request bodies (adapters/web vehicle_request): POST and PATCH
-// JSON from the network, on through the configuration's checks they meet in the daemon
-// (config::add_vehicle / update_vehicle on the demo configuration). Properties beyond "no crash,
-// no sanitizer report": every refusal is a 4xx with a message; an accepted body carries only
+// Fuzz target for the dashboard's request bodies (adapters/web vehicle_request): POST, PATCH and
+// POST .../setup JSON from the network, on through the configuration's checks they meet in the
+// daemon (config::add_vehicle / update_vehicle on the demo configuration). Properties beyond "no
+// crash, no sanitizer report": every refusal is a 4xx with a message; an accepted body carries only
 // [[vehicle]] keys the endpoint takes; a vehicle the configuration accepts satisfies the
 // documented ranges; a refusal by the configuration maps to a 422 naming a key of the request.
 #include <algorithm>
@@ -65,6 +65,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           (v.spec.profile == mocaplink::core::Profile::custom) == v.spec.messages.empty()) {
         std::abort();
       }
+    }
+  }
+  // POST /api/vehicles/NAME/setup: exactly one of apply (1..32 names of 1..16 of A-Z, 0-9, _)
+  // or reboot true — the names reach VehicleSetup::apply, which writes only listed items.
+  const auto setup = web::parse_vehicle_setup(text, "demo");
+  if (!setup.ok()) {
+    check_error(setup.error());
+  } else {
+    const web::SetupVehicle& s = setup.value();
+    if (s.name != "demo" || s.reboot == !s.apply.empty() || s.apply.size() > 32) std::abort();
+    for (const std::string& name : s.apply) {
+      const bool spelled =
+          !name.empty() && name.size() <= 16 && std::all_of(name.begin(), name.end(), [](char c) {
+            return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+          });
+      if (!spelled) std::abort();
     }
   }
   const auto update = web::parse_vehicle_patch(text, "demo");

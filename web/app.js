@@ -46,6 +46,10 @@ function renderStation(station) {
   $('#st-bridge-latency').textContent = bridge === null ? '–' : `${num(bridge.last, 2, ' ms')} (p99 ${num(bridge.p99, 2, ' ms')})`;
   $('#st-frames').textContent = int(station.frames);
   $('#st-dropped').textContent = int(station.dropped);
+  const rejected = $('#st-rejected');
+  rejected.textContent = int(station.rejected);
+  rejected.className = station.rejected > 0 ? 'bad' : '';
+  rejected.title = station.rejected_reason || 'packets the source dropped unread (malformed, or from another sender than configured)';
   const late = $('#st-late');
   late.textContent = int(station.late_frames_skipped);
   late.className = station.late_frames_skipped > 0 ? 'bad' : '';
@@ -108,6 +112,8 @@ function createCard(name) {
     messages: $('.v-messages', root),
     remove: $('.v-remove', root),
     error: $('.v-error', root),
+    apply: $('.v-apply', root),
+    reboot: $('.v-reboot', root),
     dragging: false,
     messageKey: '',
     vehicle: null,
@@ -125,6 +131,19 @@ function createCard(name) {
   card.messages.addEventListener('change', () => {
     const ticked = [...card.messages.querySelectorAll('input:checked')].map((i) => i.value);
     patchVehicle(card, name, { messages: ticked });
+  });
+  // Apply writes exactly the wrong parameters this card shows, by name (the daemon refuses any
+  // other); reboot is a separate, confirmed action.
+  card.apply.addEventListener('click', async () => {
+    const names = fixable(card.vehicle).map((i) => i.parameter);
+    if (!names.length) return;
+    const list = fixable(card.vehicle).map((i) => `${i.parameter} = ${i.fix}`).join('\n');
+    if (!window.confirm(`Write to ${name}?\n\n${list}`)) return;
+    await setupRequest(card, name, { apply: names });
+  });
+  card.reboot.addEventListener('click', async () => {
+    if (!window.confirm(`Reboot ${name}'s autopilot now?`)) return;
+    await setupRequest(card, name, { reboot: true });
   });
   // Two-step remove: the first click arms the button for 3 s.
   let disarm = null;
@@ -151,6 +170,83 @@ function createCard(name) {
   return card;
 }
 
+/// The set-up items Apply would write: wrong, with a fix, and not a profile item.
+function fixable(v) {
+  return (v && v.setup ? v.setup.items : []).filter((i) => i.status === 'wrong' && i.fix !== null);
+}
+
+async function setupRequest(card, name, body) {
+  card.error.textContent = '';
+  try {
+    const v = await request('POST', `/api/vehicles/${encodeURIComponent(name)}/setup`, body, state.token);
+    renderVehicle(card, v, true);
+  } catch (e) {
+    card.error.textContent = e.message;
+  }
+}
+
+function renderSetup(card, v) {
+  const r = card.root;
+  const setup = v.setup;
+  const ap = v.autopilot;
+  $('.v-autopilot', r).textContent = ap.name === 'unknown'
+    ? 'not identified yet'
+    : `${ap.name}${ap.version ? ` ${ap.version}` : ''} · rules of profile ${ap.profile_in_effect}`;
+  const kind = { ready: 'ok', blocked: 'bad', 'no answer': 'warn', unsupported: 'warn' }[setup.state] || 'warn';
+  pill($('.v-setup-state', r), setup.state, kind, 'v-setup-state');
+  // Rows are kept and only their text changes, so a row the operator is reading
+  // (or selecting) is not replaced by a copy on every status update.
+  const tbody = $('.v-setup-items tbody', r);
+  const kept = new Map([...tbody.rows].map((tr) => [tr.dataset.parameter, tr]));
+  const rows = setup.items.map((i) => {
+    const tr = kept.get(i.parameter) || document.createElement('tr');
+    const className = `setup-item ${i.status} ${i.severity}`;
+    if (tr.className !== className) tr.className = className;
+    tr.dataset.parameter = i.parameter;
+    const cells = [
+      i.parameter,
+      i.current === null ? (i.status === 'missing' ? 'no answer' : '…') : String(i.current),
+      i.needed,
+      i.status === 'ok' ? 'ok' : i.severity,
+      i.why + (i.reboot ? ' (after a reboot)' : '') + (i.apply !== 'none' ? ` — ${i.apply}${i.apply_note ? `: ${i.apply_note}` : ''}` : ''),
+    ];
+    while (tr.cells.length < cells.length) tr.insertCell();
+    cells.forEach((c, k) => {
+      if (tr.cells[k].textContent !== c) tr.cells[k].textContent = c;
+    });
+    return tr;
+  });
+  if (rows.length !== tbody.rows.length || rows.some((tr, k) => tbody.rows[k] !== tr)) tbody.replaceChildren(...rows);
+  const d = v.delay_ms;
+  $('.v-delay', r).textContent = d.parameter
+    ? `Delay: measured ${num(d.measured, 0, ' ms')}, recommended ${d.parameter} = ${num(d.recommended, 0, ' ms')} (now ${num(d.current, 0, ' ms')})${d.basis ? ` — ${d.basis}` : ''}`
+    : '';
+  const e = v.estimator;
+  // Asked for and not sent: say so, rather than show nothing.
+  const asked = Object.entries(v.streams || {})
+    .find(([m, s]) => ['EKF_STATUS_REPORT', 'ESTIMATOR_STATUS'].includes(m) && ['refused', 'silent'].includes(s));
+  $('.v-estimator', r).textContent = e
+    ? `Estimator (${e.source}): ${e.problems.length ? e.problems.join(', ') : 'no problem reported'}${e.good.length ? ` · good: ${e.good.join(', ')}` : ''}`
+    : (asked ? `Estimator: the vehicle sends no ${asked[0]} (asked at 1 Hz, ${asked[1]})` : '');
+  $('.v-statustext', r).replaceChildren(...v.statustext.slice(-5).map((t) => {
+    const li = document.createElement('li');
+    li.className = `statustext ${t.severity}`;
+    li.textContent = `${t.severity}: ${t.text} (${num(t.age_s, 0, ' s')} ago)`;
+    return li;
+  }));
+  const armed = v.heartbeat && v.heartbeat.armed;
+  const fixes = fixable(v);
+  card.apply.disabled = armed || !fixes.length || !['ready', 'blocked'].includes(setup.state);
+  card.apply.textContent = fixes.length ? `Apply ${fixes.length} fix${fixes.length > 1 ? 'es' : ''}` : 'Apply fixes';
+  card.apply.title = armed ? 'the vehicle is armed: nothing is written' : '';
+  card.reboot.disabled = armed || v.link_state !== 'up';
+  const notes = [];
+  if (setup.reboot_for.length) notes.push(`Reboot the vehicle for ${setup.reboot_for.join(', ')} to take effect.`);
+  if (v.origin.advice) notes.push(`Origin: ${v.origin.advice}.`);
+  if (setup.last_refusal) notes.push(`Refused: ${setup.last_refusal}`);
+  $('.v-setup-note', r).textContent = notes.join(' ');
+}
+
 function renderVehicle(card, v, fromPatch = false) {
   card.vehicle = v;
   const r = card.root;
@@ -172,14 +268,17 @@ function renderVehicle(card, v, fromPatch = false) {
   ts.textContent = v.timesync.state === 'synced' ? `synced, ${num(v.timesync.rtt_ms, 1, ' ms')} rtt` : v.timesync.state;
   ts.className = `v-timesync ${v.timesync.state}`;
   const origin = $('.v-origin', r);
-  origin.textContent = { not_needed: 'not needed', sending: 'not confirmed', confirmed: 'confirmed' }[v.origin.state] || v.origin.state;
+  origin.textContent = { not_needed: 'not needed', sending: 'not confirmed', confirmed: 'confirmed', unconfirmed: 'never confirmed (no longer sent)', withheld: 'not sent (PX4 before 1.15)' }[v.origin.state] || v.origin.state;
   origin.className = `v-origin ${v.origin.state}`;
   const ag = v.agreement;
   const box = $('.v-agreement-box', r);
   box.className = `span2 v-agreement-box ${ag.verdict}`;
-  $('.v-agreement', r).textContent = ag.verdict === 'unknown' && ag.yaw_offset_deg === null
-    ? 'waiting for the vehicle\'s estimate'
-    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}`;
+  // Unknown: say why (the daemon's reason: no heartbeat, body not tracked, what it asked the
+  // vehicle for and what came of it), with the offsets known so far.
+  const offsets = `yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}`;
+  $('.v-agreement', r).textContent = ag.verdict === 'unknown'
+    ? `unknown: ${ag.reason || 'waiting for the vehicle\'s estimate'}${ag.yaw_offset_deg === null && ag.position_offset_m === null ? '' : ` · ${offsets}`}`
+    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · ${offsets}`;
 
   // Inputs: never overwrite what the user is doing.
   if (!card.dragging && document.activeElement !== card.rate) {
@@ -205,6 +304,7 @@ function renderVehicle(card, v, fromPatch = false) {
   if (fromPatch || !card.messages.contains(document.activeElement)) {
     for (const input of card.messages.querySelectorAll('input')) input.checked = v.messages.includes(input.value);
   }
+  renderSetup(card, v);
 }
 
 function renderVehicles(vehicles) {

@@ -43,6 +43,10 @@ describe('dashboard against the fake backend', () => {
     assert.equal(await page.locator('#st-dropped').textContent(), '3');
     assert.equal(await page.locator('#st-late').textContent(), '5');
     assert.equal(await page.locator('#st-late').getAttribute('class'), 'bad');
+    assert.equal(await page.locator('#st-rejected').textContent(), '2');
+    assert.equal(await page.locator('#st-rejected').getAttribute('class'), 'bad');
+    assert.equal(await page.locator('#st-rejected').getAttribute('title'),
+                 'malformed datagram at byte 80: trailing non-zero bytes after 1 item');
     assert.equal(await page.locator('#st-bridge-latency').textContent(), '0.12 ms (p99 0.45 ms)');
   });
 
@@ -81,8 +85,10 @@ describe('dashboard against the fake backend', () => {
 
   test('shows the alerts', async () => {
     const kinds = await page.locator('#alerts .alert').evaluateAll((a) => a.map((d) => d.dataset.kind));
-    assert.deepEqual(kinds.sort(), ['agreement_failing', 'body_lost', 'origin_not_confirmed']);
-    assert.match(await page.locator('#alerts .alert.error').textContent(), /rover/);
+    assert.deepEqual(kinds.sort(), ['agreement_failing', 'body_lost', 'origin_not_confirmed', 'setup_blocked']);
+    assert.match(await page.locator('#alerts .alert.error[data-kind="agreement_failing"]').textContent(), /rover/);
+    assert.match(await page.locator('#alerts .alert.error[data-kind="setup_blocked"]').textContent(),
+      /quad1: the vehicle will not fuse mocap as set up \(EKF2_EV_CTRL\)/);
   });
 
   test('moving the rate slider sends PATCH rate_hz at once', async () => {
@@ -138,10 +144,47 @@ describe('dashboard against the fake backend', () => {
     const posted = page.waitForRequest((r) => r.method() === 'POST');
     await form.locator('button[type=submit]').click();
     assert.deepEqual((await posted).postDataJSON(), {
-      name: 'hexa', body: 'Body2', link: 'udp://10.0.0.7:14540', system_id: 1, profile: 'px4', rate_hz: 30,
+      name: 'hexa', body: 'Body2', link: 'udp://10.0.0.7:14540', system_id: 1, profile: 'auto', rate_hz: 30,
     });
     await page.locator('[data-vehicle="hexa"] .v-link', { hasText: 'udp://10.0.0.7:14540' }).waitFor();
     assert.equal(await page.locator('#add-error').textContent(), '');
+  });
+
+  test('the Set-up list shows what blocks and applies only the shown fixes after confirmation', async () => {
+    const quad = page.locator('[data-vehicle="quad1"]');
+    assert.equal(await quad.locator('.v-autopilot').textContent(), 'px4 1.14.3 · rules of profile px4');
+    assert.equal(await quad.locator('.v-setup-state').textContent(), 'blocked');
+    const ev = quad.locator('tr[data-parameter="EKF2_EV_CTRL"] td');
+    assert.deepEqual((await ev.allTextContents()).slice(0, 4),
+      ['EKF2_EV_CTRL', '0', '15 (horizontal and vertical position, velocity, yaw)', 'blocks']);
+    // A blocking wrong item is red (the stylesheet's --bad), an ok one is muted.
+    assert.equal(await ev.first().evaluate((el) => getComputedStyle(el).color), 'rgb(180, 35, 24)');
+    assert.match(await quad.locator('tr[data-parameter="EKF2_HGT_REF"] td').nth(4).textContent(), /after a reboot/);
+    assert.match(await quad.locator('.v-statustext').textContent(), /warning: Preflight Fail: ekf2 missing data/);
+    assert.match(await quad.locator('.v-estimator').textContent(), /no horizontal position/);
+    assert.match(await quad.locator('.v-delay').textContent(), /recommended EKF2_EV_DELAY = 0 ms/);
+    // The rover is armed: nothing can be applied to it.
+    assert.equal(await page.locator('[data-vehicle="rover"] .v-apply').isDisabled(), true);
+    // Dismissing the confirmation sends nothing.
+    const apply = quad.locator('.v-apply');
+    assert.equal(await apply.textContent(), 'Apply 2 fixes');
+    let posts = 0;
+    const count = (r) => { if (r.method() === 'POST' && r.url().endsWith('/setup')) posts += 1; };
+    page.on('request', count);
+    page.once('dialog', (d) => d.dismiss());
+    await apply.click();
+    await page.waitForTimeout(300);
+    assert.equal(posts, 0);
+    // Accepting it names exactly the two wrong parameters the card shows.
+    let message = '';
+    page.once('dialog', (d) => { message = d.message(); d.accept(); });
+    const sent = page.waitForRequest((r) => r.method() === 'POST' && r.url().endsWith('/api/vehicles/quad1/setup'));
+    await apply.click();
+    assert.deepEqual(JSON.parse((await sent).postData()), { apply: ['EKF2_EV_CTRL', 'EKF2_HGT_REF'] });
+    assert.match(message, /EKF2_EV_CTRL = 15\nEKF2_HGT_REF = 3/);
+    await quad.locator('.v-setup-state', { hasText: 'ready' }).waitFor();
+    page.off('request', count);
+    assert.equal(posts, 1);
   });
 
   test('removing a vehicle takes two clicks and sends DELETE', async () => {

@@ -90,6 +90,8 @@ describe('dashboard of mocaplink run (sim source)', () => {
     const card = page.locator('[data-vehicle="demo"]');
     assert.equal(await card.locator('.v-link').textContent(), `udp://127.0.0.1:${receiver.port}`);
     assert.equal(await card.locator('.v-profile').textContent(), 'px4');
+    // The demo's receiver never answers: the agreement card says why it has no verdict (issue 31).
+    await card.locator('.v-agreement', { hasText: 'unknown: no HEARTBEAT from the vehicle yet' }).waitFor();
   });
 
   test('shows live updates', async () => {
@@ -208,5 +210,104 @@ describe('dashboard of mocaplink run (sim source)', () => {
     await sleep(1500);
     await page.screenshot({ path: path.join(artifacts, 'dashboard-run.png'), fullPage: true });
     assert.deepEqual(browser.errors, []);
+  });
+});
+
+// Issue 26: DNS rebinding as a real browser does it. Chromium resolves evil.example to 127.0.0.1
+// (--host-resolver-rules, as an attacker's DNS would after the page loaded), so a page of
+// evil.example on the dashboard's port talks to the dashboard same-origin, with Host and Origin
+// both evil.example. Without a token, every request it makes is refused and changes nothing; the
+// same browser still runs the dashboard from localhost.
+describe('a page on another site cannot drive the dashboard (DNS rebinding)', () => {
+  let daemon;
+  let receiver;
+  let bystander;
+  let browser;
+  let port;
+  const log = [];
+
+  /** GET /api/status from this test (Node, Host 127.0.0.1:PORT), parsed. */
+  async function status() {
+    const res = await fetch(`http://127.0.0.1:${port}/api/status`);
+    assert.equal(res.status, 200);
+    return res.json();
+  }
+
+  before(async () => {
+    receiver = await startReceiver();
+    bystander = await startReceiver();
+    const started = await startProcess(binary, ['run', '--http', '127.0.0.1:0', '--source', 'sim://',
+      '--vehicle', `q:body=Body1,link=udp://127.0.0.1:${receiver.port},system_id=1,profile=px4`],
+    /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//, log);
+    daemon = started.child;
+    port = started.match[1];
+    browser = await launchBrowser(undefined, ['--host-resolver-rules=MAP evil.example 127.0.0.1']);
+  });
+
+  after(async () => {
+    await browser?.close();
+    if (daemon) await stopProcess(daemon, 'SIGINT');
+    receiver?.socket.close();
+    bystander?.socket.close();
+  });
+
+  test('the five requests of a rebinding page are refused and change nothing', async () => {
+    const before = await status();
+    const page = browser.page;
+    const loaded = await page.goto(`http://evil.example:${port}/`);
+    assert.equal(loaded.status(), 403);
+    const refusal = await page.textContent('body');
+    assert.ok(refusal.includes(`Host \\"evil.example:${port}\\"`), refusal);
+    // The attacker's script, running in its own page (same origin as the dashboard now).
+    const answers = await page.evaluate(async (link) => {
+      const json = { 'Content-Type': 'application/json' };
+      const requests = [
+        ['GET', '/api/status'],
+        ['GET', '/api/events'],
+        ['PATCH', '/api/vehicles/q', { paused: true }],
+        ['POST', '/api/vehicles', { name: 'evil', body: 'Body2', link, system_id: 9 }],
+        ['DELETE', '/api/vehicles/q'],
+      ];
+      const out = [];
+      for (const [method, path, body] of requests) {
+        const res = await fetch(path, {
+          method, headers: body ? json : {}, body: body ? JSON.stringify(body) : undefined,
+        });
+        out.push({ method, path, status: res.status, text: await res.text() });
+      }
+      return out;
+    }, `udp://127.0.0.1:${bystander.port}`);
+    for (const a of answers) {
+      assert.equal(a.status, 403, `${a.method} ${a.path}: ${a.text}`);
+      assert.ok(!a.text.includes('"vehicles"'), `${a.method} ${a.path} leaked the status`);
+    }
+    const after = await status();
+    assert.deepEqual(after.vehicles.map((v) => [v.name, v.paused]), [['q', false]]);
+    assert.deepEqual(after.vehicles.map((v) => v.name), before.vehicles.map((v) => v.name));
+    assert.ok(after.http.requests_host_refused >= 6, JSON.stringify(after.http));
+    assert.ok(await measure(receiver, ODOMETRY, 1000) > 40, 'the vehicle stopped getting poses');
+    assert.equal(bystander.arrivals.length, 0, 'the page made mocaplink send to its address');
+    assert.ok(log.some((l) => /dashboard: refused: Host "evil.example:\d+"/.test(l)), log.join('\n'));
+  });
+
+  test('the same browser runs the dashboard from localhost', async () => {
+    const page = await browser.context.newPage();
+    await page.goto(`http://localhost:${port}/`);
+    await page.locator('#live', { hasText: 'live' }).waitFor();
+    const card = page.locator('[data-vehicle="q"]');
+    await card.waitFor();
+    const patched = page.waitForResponse((r) => r.request().method() === 'PATCH');
+    await card.locator('.v-pause').click();
+    assert.equal((await patched).status(), 200);
+    await card.locator('.v-actual', { hasText: 'paused' }).waitFor();
+    await sleep(300);
+    assert.equal(await measure(receiver, ODOMETRY, 1000), 0, 'ODOMETRY still arriving when paused');
+    const resumed = page.waitForResponse((r) => r.request().method() === 'PATCH');
+    await card.locator('.v-pause').click();
+    assert.equal((await resumed).status(), 200);
+    await sleep(300);
+    assert.ok(await measure(receiver, ODOMETRY, 1000) > 40);
+    await page.screenshot({ path: path.join(artifacts, 'dashboard-localhost.png') });
+    await page.close();
   });
 });

@@ -46,15 +46,19 @@ export async function stopProcess(child, signal = 'SIGTERM') {
   await exited;
 }
 
-/** A browser context with a fresh profile directory, and its first page. */
-export async function launchBrowser(viewport = { width: 1280, height: 900 }) {
+/**
+ * A browser context with a fresh profile directory, and its first page. `extraArgs` are more
+ * Chromium switches (e.g. --host-resolver-rules to point a name at 127.0.0.1).
+ */
+export async function launchBrowser(viewport = { width: 1280, height: 900 }, extraArgs = []) {
   const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'mocaplink-chromium-'));
   const context = await chromium.launchPersistentContext(userDataDir, {
     executablePath: process.env.MOCAPLINK_CHROMIUM || '/usr/bin/chromium',
     headless: true,
     viewport,
     args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+      '--disable-background-networking', '--disable-component-update', '--disable-sync',
+      ...extraArgs],
   });
   const page = context.pages()[0] || (await context.newPage());
   const errors = [];

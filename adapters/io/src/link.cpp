@@ -63,7 +63,7 @@ void Link::end_stream() {
   });
 }
 
-void Link::set_state(LinkState state, const std::string& detail) {
+void Link::set_state(TransportState state, const std::string& detail) {
   if (state == state_) return;
   state_ = state;
   if (on_state_) on_state_(state, detail);

@@ -22,7 +22,7 @@ void StreamLink::start(FrameHandler on_frame, StateHandler on_state) {
 }
 
 void StreamLink::open() {
-  if (closing_ || state() == LinkState::closed) return;
+  if (closing_ || state() == TransportState::closed) return;
   const std::uint64_t generation = ++generation_;
   async_open([this, generation](const std::error_code& error, const std::string& detail) {
     on_opened(generation, error, detail);
@@ -31,11 +31,11 @@ void StreamLink::open() {
 
 void StreamLink::on_opened(std::uint64_t generation, const std::error_code& error,
                            const std::string& detail) {
-  if (generation != generation_ || closing_ || state() == LinkState::closed) return;
+  if (generation != generation_ || closing_ || state() == TransportState::closed) return;
   if (error) {
     if (error == asio::error::connection_refused) ++counters_.refused;
     close_transport();
-    set_state(LinkState::down, detail + ": " + error.message());
+    set_state(TransportState::down, detail + ": " + error.message());
     retry_timer_.expires_after(next_backoff());
     retry_timer_.async_wait([this](const std::error_code& e) {
       if (!e) open();
@@ -44,14 +44,14 @@ void StreamLink::on_opened(std::uint64_t generation, const std::error_code& erro
   }
   reset_backoff();
   ++counters_.connects;
-  set_state(LinkState::up, detail);
+  set_state(TransportState::up, detail);
   read();
 }
 
 void StreamLink::read() {
   const std::uint64_t generation = generation_;
   async_read_some(read_buffer_, [this, generation](const std::error_code& error, std::size_t n) {
-    if (generation != generation_ || state() == LinkState::closed) return;
+    if (generation != generation_ || state() == TransportState::closed) return;
     if (n > 0) receive_stream(std::span<const std::uint8_t>(read_buffer_.data(), n));
     if (error) {
       if (error != asio::error::eof) ++counters_.receive_errors;
@@ -63,7 +63,7 @@ void StreamLink::read() {
 }
 
 bool StreamLink::send(std::span<const std::uint8_t> frame) {
-  if (state() != LinkState::up || closing_) {
+  if (state() != TransportState::up || closing_) {
     ++counters_.dropped_down;
     return false;
   }
@@ -83,7 +83,7 @@ void StreamLink::kick_write() {
                                                                  std::size_t /*n*/) {
     if (generation != generation_) return;
     if (error) {
-      if (state() == LinkState::closed) return;
+      if (state() == TransportState::closed) return;
       ++counters_.send_errors;
       lose_connection(error.message());
       if (closing_) finish_close();
@@ -102,7 +102,7 @@ void StreamLink::lose_connection(const std::string& why) {
   ++generation_;  // ignore completions of the dead connection
   counters_.dropped_down += backlog_.clear();
   if (closing_) return;
-  set_state(LinkState::down, why);
+  set_state(TransportState::down, why);
   retry_timer_.expires_after(next_backoff());
   retry_timer_.async_wait([this](const std::error_code& e) {
     if (!e) open();
@@ -110,10 +110,10 @@ void StreamLink::lose_connection(const std::string& why) {
 }
 
 void StreamLink::close(std::chrono::milliseconds linger) {
-  if (closing_ || state() == LinkState::closed) return;
+  if (closing_ || state() == TransportState::closed) return;
   closing_ = true;
   retry_timer_.cancel();
-  if (state() == LinkState::up && backlog_.writing() && linger.count() > 0) {
+  if (state() == TransportState::up && backlog_.writing() && linger.count() > 0) {
     // Let the queued frames leave, but never wait longer than `linger`.
     linger_timer_.expires_after(linger);
     linger_timer_.async_wait([this](const std::error_code& e) {
@@ -125,12 +125,12 @@ void StreamLink::close(std::chrono::milliseconds linger) {
 }
 
 void StreamLink::finish_close() {
-  if (state() == LinkState::closed) return;
+  if (state() == TransportState::closed) return;
   linger_timer_.cancel();
   ++generation_;
   counters_.dropped_down += backlog_.clear();
   close_transport();
-  set_state(LinkState::closed, "closed");
+  set_state(TransportState::closed, "closed");
 }
 
 }  // namespace mocaplink::io

@@ -27,7 +27,7 @@ void TcpLink::async_open(OpenHandler done) {
       loop_, host_, port_, liveness(),
       [this, done = std::move(done)](const std::error_code& error,
                                      const std::vector<asio::ip::tcp::endpoint>& endpoints) {
-        if (state() == LinkState::closed) return;  // closed while a name was being resolved
+        if (state() == TransportState::closed) return;  // closed while a name was being resolved
         if (error || endpoints.empty()) {
           // Report through the loop, never re-entrantly from start().
           asio::post(loop_, [done, error, host = host_] {

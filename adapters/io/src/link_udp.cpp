@@ -59,11 +59,11 @@ void UdpLink::start(FrameHandler on_frame, StateHandler on_state) {
 }
 
 void UdpLink::open() {
-  if (state() == LinkState::closed) return;
+  if (state() == TransportState::closed) return;
   detail::resolve_async<asio::ip::udp>(
       loop_, host_, port_, liveness(),
       [this](const std::error_code& error, const std::vector<asio::ip::udp::endpoint>& found) {
-        if (state() == LinkState::closed) return;
+        if (state() == TransportState::closed) return;
         if (error || found.empty()) {
           schedule_retry("cannot resolve " + host_ + ": " +
                          (error ? error.message() : "no address"));
@@ -86,13 +86,13 @@ void UdpLink::connect(const asio::ip::udp::endpoint& remote) {
   }
   reset_backoff();
   ++counters_.connects;
-  set_state(LinkState::up,
+  set_state(TransportState::up,
             "sending to " + url() + " from port " + std::to_string(local_endpoint().port()));
   receive();
 }
 
 void UdpLink::schedule_retry(const std::string& why) {
-  set_state(LinkState::down, why);
+  set_state(TransportState::down, why);
   retry_timer_.expires_after(next_backoff());
   retry_timer_.async_wait([this](const std::error_code& error) {
     if (!error) open();
@@ -103,7 +103,7 @@ void UdpLink::receive() {
   socket_.async_receive(
       asio::buffer(receive_buffer_.get(), kReceiveBufferSize),
       [this](const std::error_code& error, std::size_t n) {
-        if (error == asio::error::operation_aborted || state() == LinkState::closed) return;
+        if (error == asio::error::operation_aborted || state() == TransportState::closed) return;
         if (error) {
           if (is_refused(error)) {
             ++counters_.refused;  // an earlier datagram met an ICMP port unreachable
@@ -118,7 +118,7 @@ void UdpLink::receive() {
 }
 
 bool UdpLink::send(std::span<const std::uint8_t> frame) {
-  if (state() != LinkState::up) {
+  if (state() != TransportState::up) {
     ++counters_.dropped_down;
     return false;
   }
@@ -144,7 +144,7 @@ bool UdpLink::send(std::span<const std::uint8_t> frame) {
 }
 
 std::size_t UdpLink::send_batch(std::span<const std::span<const std::uint8_t>> frames) {
-  if (state() != LinkState::up) {
+  if (state() != TransportState::up) {
     counters_.dropped_down += frames.size();
     return 0;
   }
@@ -188,8 +188,8 @@ std::size_t UdpLink::send_batch(std::span<const std::span<const std::uint8_t>> f
 }
 
 void UdpLink::close(std::chrono::milliseconds /*linger*/) {
-  if (state() == LinkState::closed) return;
-  set_state(LinkState::closed, "closed");
+  if (state() == TransportState::closed) return;
+  set_state(TransportState::closed, "closed");
   std::error_code ignored;
   retry_timer_.cancel();
   socket_.close(ignored);

@@ -244,8 +244,8 @@ std::string frame_to_json(const mavlink::FrameView& f, const mavlink::SigningKey
   std::string out = fmt::format(
       "{{\"msgid\":{},\"name\":{},\"version\":{},\"seq\":{},\"sysid\":{},\"compid\":{},\"len\":{},"
       "\"incompat_flags\":{},\"compat_flags\":{},\"crc\":{},\"fields\":",
-      f.msgid, f.info ? "\"" + std::string(f.info->name) + "\"" : std::string("null"), f.version,
-      f.seq, f.sysid, f.compid, f.len, f.incompat_flags, f.compat_flags, f.crc);
+      f.msgid, f.info != nullptr ? fmt::format("\"{}\"", f.info->name) : std::string("null"),
+      f.version, f.seq, f.sysid, f.compid, f.len, f.incompat_flags, f.compat_flags, f.crc);
   if (const auto msg = mav::decode_message(f)) {
     out += '{';
     bool first = true;

@@ -26,10 +26,10 @@ void AlertMonitor::annotate(StatusView& status, double now_s) {
         body.name + " is lost" + (followed ? ": its vehicle gets no pose" : ""));
   }
   for (const VehicleView& vehicle : status.vehicles) {
-    if (vehicle.link_state == LinkState::down) {
+    if (vehicle.link_state == LinkHealth::down) {
       add(AlertLevel::error, "link_down", vehicle.name,
           vehicle.name + ": link " + vehicle.link + " is down");
-    } else if (vehicle.link_state == LinkState::silent) {
+    } else if (vehicle.link_state == LinkHealth::silent) {
       add(AlertLevel::warning, "vehicle_silent", vehicle.name,
           vehicle.name + ": nothing heard from the vehicle on " + vehicle.link);
     }
@@ -39,6 +39,29 @@ void AlertMonitor::annotate(StatusView& status, double now_s) {
     } else if (vehicle.origin == OriginState::conflict) {
       add(AlertLevel::error, "origin_conflict", vehicle.name,
           vehicle.name + ": the vehicle has another GPS origin and cannot change it until reboot");
+    } else if (vehicle.origin == OriginState::withheld) {
+      add(AlertLevel::warning, "origin_withheld", vehicle.name,
+          vehicle.name + ": origin not sent: " +
+              vehicle.origin_advice.value_or("PX4 before 1.15 would shift its height by it"));
+    } else if (vehicle.origin == OriginState::unconfirmed) {
+      add(AlertLevel::warning, "origin_unconfirmed", vehicle.name,
+          vehicle.name + ": origin never confirmed, no longer sent: " +
+              vehicle.origin_advice.value_or("the vehicle never reported it"));
+    }
+    if (vehicle.setup.state == "blocked") {
+      std::string wrong;
+      for (const SetupItemView& item : vehicle.setup.items) {
+        if (item.severity != "blocks" || (item.status != "wrong" && item.status != "missing")) {
+          continue;
+        }
+        wrong += (wrong.empty() ? "" : ", ") + item.parameter;
+      }
+      add(AlertLevel::error, "setup_blocked", vehicle.name,
+          vehicle.name + ": the vehicle will not fuse mocap as set up (" + wrong +
+              "): see its Set-up list");
+    } else if (vehicle.setup.state == "no answer") {
+      add(AlertLevel::warning, "setup_no_answer", vehicle.name,
+          vehicle.name + ": the vehicle answers no parameter reads: its set-up cannot be checked");
     }
     if (vehicle.agreement.verdict == AgreementVerdict::disagree) {
       add(AlertLevel::error, "agreement_failing", vehicle.name,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <utility>
 
 #include "mocaplink/web/core_views.hpp"
@@ -104,9 +105,9 @@ double seconds_between(core::HostTime from, core::HostTime to) {
   return core::to_seconds(to - from);
 }
 
-LinkState link_state(core::LinkState state, bool down) {
-  if (down) return LinkState::down;
-  return state == core::LinkState::alive ? LinkState::up : LinkState::silent;
+LinkHealth link_state(core::HeartbeatState state, bool down) {
+  if (down) return LinkHealth::down;
+  return state == core::HeartbeatState::alive ? LinkHealth::up : LinkHealth::silent;
 }
 
 }  // namespace
@@ -135,10 +136,92 @@ std::string flight_mode_name(std::uint8_t autopilot, std::uint8_t type, std::uin
   return fallback;
 }
 
+namespace {
+
+/// The set-up list, the vehicle's own words and the delay recommendation (core::VehicleSetup).
+void fill_setup(const core::VehicleStatus& in, core::HostTime now, VehicleView& v) {
+  const core::VehicleSetupSnapshot& setup = in.setup;
+  v.autopilot.name = std::string(core::to_string(setup.autopilot));
+  if (setup.version) v.autopilot.version = core::to_string(*setup.version);
+  v.autopilot.profile_in_effect = core::profile_in_effect(in.profile, setup.autopilot);
+  if (in.vehicle.origin == core::OriginState::unconfirmed) {
+    v.origin_advice = core::unconfirmed_origin_advice(setup.autopilot, setup.version);
+  } else if (in.vehicle.origin == core::OriginState::withheld) {
+    v.origin_advice = core::withheld_origin_advice(setup.version);
+  }
+  v.setup.state = std::string(core::to_string(setup.state));
+  for (const core::SetupLine& line : setup.lines) {
+    const core::SetupItem& item = line.item;
+    v.setup.items.push_back(SetupItemView{
+        item.parameter, item.current, item.needed, std::string(core::to_string(item.severity)),
+        std::string(core::to_string(item.status)), item.why, item.fix, item.reboot,
+        std::string(core::to_string(line.apply)), line.apply_note});
+  }
+  v.setup.reboot_for = setup.reboot_for;
+  v.setup.last_refusal = setup.last_refusal;
+  for (const core::StatusText& t : setup.statustext) {
+    v.statustext.push_back(StatusTextView{std::string(core::severity_name(t.severity)), t.text,
+                                          std::max(0.0, seconds_between(t.time, now))});
+  }
+  if (setup.estimator) {
+    EstimatorView e;
+    e.source = std::string(setup.estimator->source);
+    e.good.assign(setup.estimator->good.begin(), setup.estimator->good.end());
+    e.problems.assign(setup.estimator->problems.begin(), setup.estimator->problems.end());
+    e.age_s = std::max(0.0, seconds_between(setup.estimator->time, now));
+    v.estimator = std::move(e);
+  }
+  v.delay_ms = DelayView{setup.delay.measured_ms, setup.delay.recommended_ms, setup.delay.parameter,
+                         setup.delay.current_ms, setup.delay.basis};
+}
+
+/// Why the agreement check has no verdict yet, the first cause that applies (docs/api.md
+/// `agreement.reason`); nullopt once it has one.
+std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot,
+                                            const core::VehicleStatus& in, const VehicleView& v) {
+  if (in.vehicle.agreement.verdict != core::AgreementVerdict::unknown) return std::nullopt;
+  if (!in.enabled) return "the vehicle is disabled: nothing is sent to it or asked of it";
+  if (v.link_state == LinkHealth::down) return "the link cannot send";
+  if (!in.vehicle.heartbeat) return "no HEARTBEAT from the vehicle yet";
+  if (v.link_state == LinkHealth::silent) return "nothing heard from the vehicle lately";
+  const auto body = std::find_if(snapshot.bodies.begin(), snapshot.bodies.end(),
+                                 [&](const core::BodySnapshot& b) { return b.name == in.body; });
+  if (body == snapshot.bodies.end() || body->estimate.state != core::TrackingState::tracking) {
+    return "the mocap body " + in.body + " is not tracked";
+  }
+  for (const core::VehicleStream stream : core::kAgreementStreams) {
+    if (auto why = core::describe_missing(stream, in.streams[stream])) return why;
+  }
+  const core::Agreement& a = in.vehicle.agreement;
+  std::array<char, 160> text{};
+  if (a.settling) {
+    std::snprintf(text.data(), text.size(),
+                  "the vehicle booted less than %g s ago: its estimate is compared once it has "
+                  "settled",
+                  core::to_seconds(core::kAgreementSettle));
+    return std::string(text.data());
+  }
+  if (a.disagreeing_since) {
+    std::snprintf(text.data(), text.size(),
+                  "the vehicle's estimate is beyond a threshold for %.1f s: it disagrees if that "
+                  "lasts %g s",
+                  std::max(0.0, core::to_seconds(snapshot.time - *a.disagreeing_since)),
+                  core::to_seconds(core::kAgreementHold));
+    return std::string(text.data());
+  }
+  return "comparing the vehicle's estimate with mocap";
+}
+
+}  // namespace
+
+void fill_setup_view(const core::VehicleStatus& in, core::HostTime now, VehicleView& v) {
+  fill_setup(in, now, v);
+}
+
 BridgeStatusBuilder::BridgeStatusBuilder(core::HostTime started) : started_(started) {}
 
 StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
-                                      const BridgeStatusContext& context) {
+                                      const BridgeStatusContext& context) const {
   StatusView status;
   const core::HostTime now = snapshot.time;
   status.uptime_s = std::max(0.0, seconds_between(started_, now));
@@ -158,8 +241,9 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
         BridgeLatencyView{ms(l.last), ms(l.p50), ms(l.p99), ms(l.max)};
   }
   status.station.late_frames_skipped = context.late_frames_skipped;
+  status.station.rejected = context.source_rejected;
+  status.station.rejected_reason = context.source_rejected_reason;
 
-  std::map<std::string, RateWindow, std::less<>> next_rates;
   for (std::size_t i = 0; i < snapshot.vehicles.size(); ++i) {
     const core::VehicleStatus& in = snapshot.vehicles[i];
     const core::SenderSnapshot& sender = in.sender;
@@ -170,7 +254,6 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     v.link = i < context.links.size() ? context.links[i] : "";
     v.system_id = sender.system_id;
     v.profile = std::string(core::to_string(in.profile));
-    std::uint64_t poses = 0;
     for (const core::MessageDescriptor& row : core::kMessages) {
       const std::string name(row.name);
       const auto k = static_cast<std::size_t>(row.kind);
@@ -178,12 +261,17 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
       if (sender.messages.contains(row.kind)) v.messages.push_back(name);
       if (sender.counters.sent[k] > 0)
         v.sent[std::string(row.mavlink_name)] = sender.counters.sent[k];
-      poses += sender.counters.sent[k];
     }
     if (sender.counters.heartbeats > 0) v.sent["HEARTBEAT"] = sender.counters.heartbeats;
     if (sender.counters.origins > 0) v.sent["SET_GPS_GLOBAL_ORIGIN"] = sender.counters.origins;
     if (sender.counters.origin_requests > 0) {
       v.sent["REQUEST_MESSAGE"] = sender.counters.origin_requests;
+    }
+    if (sender.counters.interval_requests > 0) {
+      v.sent["SET_MESSAGE_INTERVAL"] = sender.counters.interval_requests;
+    }
+    if (sender.counters.data_stream_requests > 0) {
+      v.sent["REQUEST_DATA_STREAM"] = sender.counters.data_stream_requests;
     }
     const std::uint64_t timesyncs =
         sender.counters.timesync_replies + sender.counters.timesync_requests;
@@ -192,18 +280,9 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     v.rate_hz = sender.rate_hz;
     v.paused = sender.paused || !in.enabled;
 
-    // Actual rate: pose frames over a window of at least one second, kept between calls.
-    RateWindow window{now, poses, 0.0};
-    if (auto it = rates_.find(in.name); it != rates_.end() && poses >= it->second.poses) {
-      const double dt = seconds_between(it->second.time, now);
-      if (dt >= 1.0) {
-        window.rate_hz = static_cast<double>(poses - it->second.poses) / dt;
-      } else {
-        window = it->second;  // keep the older start until a second has passed
-      }
-    }
-    v.send_rate_hz = window.rate_hz;
-    next_rates[in.name] = window;
+    // Measured by the core over its fixed window up to the snapshot's time (sender.hpp), so
+    // the first request of a run reads the rate that flows.
+    v.send_rate_hz = sender.send_rate_hz;
 
     const bool down = i < context.links_down.size() && context.links_down[i];
     v.link_state = link_state(state.link, down);
@@ -224,11 +303,19 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
       v.timesync.state = TimesyncState::waiting;
     }
     v.origin = state.origin;
-    v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
-                                state.agreement.position_offset_m};
+    v.agreement =
+        AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
+                      state.agreement.position_offset_m, agreement_reason(snapshot, in, v)};
+    const std::uint8_t autopilot = state.heartbeat ? state.heartbeat->autopilot : 0;
+    for (const core::VehicleStream stream : core::kVehicleStreams) {
+      // The estimator's only once the autopilot says which message it is.
+      if (stream == core::VehicleStream::estimator && !core::asked_of(stream, autopilot)) continue;
+      v.streams[std::string(core::mavlink_name(stream, autopilot))] =
+          core::to_string(in.streams[stream].state);
+    }
+    fill_setup(in, now, v);
     status.vehicles.push_back(std::move(v));
   }
-  rates_ = std::move(next_rates);
   return status;
 }
 

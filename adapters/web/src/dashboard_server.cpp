@@ -59,6 +59,12 @@ bool is_json_content_type(const std::string& content_type) {
   return type == "application/json";
 }
 
+/// 1, 10, 100...: when a counted refusal is logged (a summary, not a line per refusal).
+bool is_power_of_ten(std::uint64_t n) {
+  while (n >= 10 && n % 10 == 0) n /= 10;
+  return n == 1;
+}
+
 std::string host_for_url(const std::string& host) {
   return host.find(':') != std::string::npos ? "[" + host + "]" : host;
 }
@@ -177,11 +183,6 @@ class LimitedServer final : public httplib::Server {
                std::chrono::microseconds(write_timeout_usec_));
   }
 
-  static bool is_power_of_ten(std::uint64_t n) {
-    while (n >= 10 && n % 10 == 0) n /= 10;
-    return n == 1;
-  }
-
   ClientSlots slots_;
   const std::chrono::milliseconds request_timeout_;
   const std::chrono::milliseconds idle_timeout_;
@@ -213,7 +214,10 @@ class DashboardServer::Impl {
 
   void install_routes();
   httplib::Server::HandlerResponse check_access(const httplib::Request& req,
-                                                httplib::Response& res) const;
+                                                httplib::Response& res);
+  /// True when the request's Host names this server, or need not (see
+  /// DashboardServerConfig::allowed_hosts); otherwise answers 403 and counts it.
+  bool check_host(const httplib::Request& req, httplib::Response& res);
   std::shared_ptr<const Snapshot> snapshot();
   void invalidate_snapshot();
   /// The vehicle as in the status. After a change that succeeded (`changed`), a status that does
@@ -242,6 +246,7 @@ class DashboardServer::Impl {
   std::mutex stop_mutex_;
   std::condition_variable stop_cv_;
   std::atomic<std::size_t> event_clients_{0};
+  std::atomic<std::uint64_t> host_refused_{0};
 };
 
 std::optional<std::string> DashboardServer::Impl::start() {
@@ -316,9 +321,30 @@ void DashboardServer::Impl::stop() {
   }
 }
 
+bool DashboardServer::Impl::check_host(const httplib::Request& req, httplib::Response& res) {
+  if (!config_.token.empty() && config_.allowed_hosts.empty()) return true;
+  // RFC 9112 §3.2: a request with no Host or more than one is answered 400 by the standard; 403
+  // here, with the same JSON as a foreign Host, since nothing else about it is wrong.
+  const bool one_host = req.get_header_value_count("Host") == 1;
+  const std::string host = req.get_header_value("Host");
+  if (one_host && host_allowed(host, port_, config_.allowed_hosts)) return true;
+  const std::string message =
+      host_refusal(one_host ? std::optional<std::string_view>(host) : std::nullopt);
+  const std::uint64_t refused = ++host_refused_;
+  if (is_power_of_ten(refused)) {  // a rebinding page or a scanner loops
+    spdlog::warn("dashboard: {} ({} refused so far)", message, refused);
+  }
+  res.set_header("Connection", "close");  // any request body is left unread
+  send_error(res, ApiError{403, message, ""});
+  return false;
+}
+
 httplib::Server::HandlerResponse DashboardServer::Impl::check_access(const httplib::Request& req,
-                                                                     httplib::Response& res) const {
+                                                                     httplib::Response& res) {
   using httplib::Server;
+  // Before anything else, for every path (page files and /api/events included): nothing is read
+  // or changed for a request that does not name this server.
+  if (!check_host(req, res)) return Server::HandlerResponse::Handled;
   // The page itself is public: it holds no data, and a browser cannot attach a header to a page
   // load. Everything under /api/ is guarded.
   if (req.path.rfind("/api/", 0) != 0 && req.path != "/api")
@@ -357,6 +383,7 @@ std::shared_ptr<const DashboardServer::Impl::Snapshot> DashboardServer::Impl::sn
   StatusView status = backend_.status();
   alerts_.annotate(status, std::chrono::duration<double>(now - created_).count());
   status.http = server_.counters();
+  status.http.host_refused = host_refused_.load();
   auto fresh = std::make_shared<Snapshot>();
   fresh->status = status;
   fresh->text = fresh->status.dump();
@@ -466,6 +493,14 @@ void DashboardServer::Impl::install_routes() {
     const std::string name = req.matches[1];
     apply_and_respond(res, RemoveVehicle{name}, name, 204);
   });
+  // The set-up list's fixes and the reboot: only ever on this request (docs/api.md).
+  const std::string setup_pattern = vehicle_pattern + "/setup";
+  server_.Post(setup_pattern, [this](const Request& req, Response& res) {
+    const std::string name = req.matches[1];
+    auto setup = parse_vehicle_setup(req.body, name);
+    if (!setup.ok()) return send_error(res, setup.error());
+    apply_and_respond(res, setup.value(), name, 200);
+  });
 
   // Known paths with the wrong method: 405 with Allow.
   auto not_allowed = [](const char* allow) {
@@ -482,6 +517,10 @@ void DashboardServer::Impl::install_routes() {
   server_.Delete("/api/vehicles", not_allowed("GET, POST"));
   server_.Post(vehicle_pattern, not_allowed("GET, PATCH, DELETE"));
   server_.Put(vehicle_pattern, not_allowed("GET, PATCH, DELETE"));
+  server_.Get(setup_pattern, not_allowed("POST"));
+  server_.Put(setup_pattern, not_allowed("POST"));
+  server_.Patch(setup_pattern, not_allowed("POST"));
+  server_.Delete(setup_pattern, not_allowed("POST"));
 
   server_.Get("/.*", [](const Request& req, Response& res) {
     const auto asset = find_asset(req.path);

@@ -1,5 +1,6 @@
 #include "mocaplink/web/http_auth.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstddef>
 #include <string>
@@ -75,6 +76,38 @@ bool origin_allowed(std::string_view origin, std::string_view host) {
     }
   }
   return false;  // "null" (sandboxed or file:// pages) and anything unexpected
+}
+
+bool host_allowed(std::string_view host_header, std::uint16_t listen_port,
+                  std::span<const config::HostPort> allowed_hosts) {
+  // The Host header is uri-host [":" port] (RFC 9110 §7.2), as a configured address is written:
+  // one parser for both. Port 0 stands for "no port given" (an explicit ":0" is malformed).
+  const auto requested =
+      config::parse_host_port(host_header, config::HostPortRules{.port_optional = true});
+  if (!requested.ok()) return false;
+  const config::HostPort& host = requested.value();
+  const bool default_port = host.port == 0 || host.port == listen_port;
+  if (config::is_loopback(host.host)) return default_port;
+  return std::any_of(allowed_hosts.begin(), allowed_hosts.end(), [&](const config::HostPort& a) {
+    return iequals(a.host, host.host) && (a.port == 0 ? default_port : a.port == host.port);
+  });
+}
+
+std::string host_refusal(std::optional<std::string_view> host_header) {
+  if (!host_header) {
+    return "refused: the request must carry exactly one Host header naming this dashboard";
+  }
+  constexpr std::size_t kMaxShown = 100;
+  std::string shown;
+  for (const char c : host_header->substr(0, kMaxShown)) {
+    shown += (c >= 0x20 && c < 0x7f) ? c : '?';
+  }
+  if (host_header->size() > kMaxShown) shown += "...";
+  return "refused: Host \"" + shown +
+         "\" is not a name of this dashboard: it answers only to localhost, 127.0.0.0/8, [::1] "
+         "and the names of [http] allowed_hosts, so that no web page can reach it by DNS "
+         "rebinding. To open it by this name, add the name to [http] allowed_hosts or run with "
+         "--http-allow-host NAME";
 }
 
 }  // namespace mocaplink::web

@@ -16,13 +16,13 @@ std::string text(std::string_view s) {
 
 }  // namespace
 
-std::string_view to_string(LinkState state) {
+std::string_view to_string(LinkHealth state) {
   switch (state) {
-    case LinkState::up:
+    case LinkHealth::up:
       return "up";
-    case LinkState::silent:
+    case LinkHealth::silent:
       return "silent";
-    case LinkState::down:
+    case LinkHealth::down:
       return "down";
   }
   return "silent";
@@ -73,7 +73,11 @@ void to_json(nlohmann::json& j, const StationView& station) {
                                                        : nlohmann::json(nullptr)},
                      {"bodies", station.bodies},
                      {"bridge_latency_ms", optional_json(station.bridge_latency_ms)},
-                     {"late_frames_skipped", station.late_frames_skipped}};
+                     {"late_frames_skipped", station.late_frames_skipped},
+                     {"rejected", station.rejected},
+                     {"rejected_reason", station.rejected_reason.empty()
+                                             ? nlohmann::json(nullptr)
+                                             : nlohmann::json(station.rejected_reason)}};
 }
 
 void to_json(nlohmann::json& j, const HeartbeatView& heartbeat) {
@@ -82,6 +86,31 @@ void to_json(nlohmann::json& j, const HeartbeatView& heartbeat) {
                      {"armed", heartbeat.armed},
                      {"mode", heartbeat.mode},
                      {"age_s", heartbeat.age_s}};
+}
+
+void to_json(nlohmann::json& j, const SetupItemView& item) {
+  j = nlohmann::json{{"parameter", item.parameter},
+                     {"current", optional_json(item.current)},
+                     {"needed", item.needed},
+                     {"severity", item.severity},
+                     {"status", item.status},
+                     {"why", item.why},
+                     {"fix", optional_json(item.fix)},
+                     {"reboot", item.reboot},
+                     {"apply", item.apply},
+                     {"apply_note", item.apply_note}};
+}
+
+void to_json(nlohmann::json& j, const StatusTextView& text_view) {
+  j = nlohmann::json{
+      {"severity", text_view.severity}, {"text", text_view.text}, {"age_s", text_view.age_s}};
+}
+
+void to_json(nlohmann::json& j, const EstimatorView& estimator) {
+  j = nlohmann::json{{"source", estimator.source},
+                     {"good", estimator.good},
+                     {"problems", estimator.problems},
+                     {"age_s", estimator.age_s}};
 }
 
 void to_json(nlohmann::json& j, const VehicleView& vehicle) {
@@ -104,11 +133,32 @@ void to_json(nlohmann::json& j, const VehicleView& vehicle) {
                       {{"state", text(to_string(vehicle.timesync.state))},
                        {"offset_ms", optional_json(vehicle.timesync.offset_ms)},
                        {"rtt_ms", optional_json(vehicle.timesync.rtt_ms)}}},
-                     {"origin", {{"state", text(to_string(vehicle.origin))}}},
+                     {"origin",
+                      {{"state", text(to_string(vehicle.origin))},
+                       {"advice", optional_json(vehicle.origin_advice)}}},
                      {"agreement",
                       {{"verdict", text(to_string(vehicle.agreement.verdict))},
                        {"yaw_offset_deg", optional_json(vehicle.agreement.yaw_offset_deg)},
-                       {"position_offset_m", optional_json(vehicle.agreement.position_offset_m)}}}};
+                       {"position_offset_m", optional_json(vehicle.agreement.position_offset_m)},
+                       {"reason", optional_json(vehicle.agreement.reason)}}},
+                     {"streams", vehicle.streams},
+                     {"autopilot",
+                      {{"name", vehicle.autopilot.name},
+                       {"version", optional_json(vehicle.autopilot.version)},
+                       {"profile_in_effect", vehicle.autopilot.profile_in_effect}}},
+                     {"setup",
+                      {{"state", vehicle.setup.state},
+                       {"items", vehicle.setup.items},
+                       {"reboot_for", vehicle.setup.reboot_for},
+                       {"last_refusal", vehicle.setup.last_refusal}}},
+                     {"statustext", vehicle.statustext},
+                     {"estimator", optional_json(vehicle.estimator)},
+                     {"delay_ms",
+                      {{"measured", optional_json(vehicle.delay_ms.measured)},
+                       {"recommended", optional_json(vehicle.delay_ms.recommended)},
+                       {"parameter", vehicle.delay_ms.parameter},
+                       {"current", optional_json(vehicle.delay_ms.current)},
+                       {"basis", vehicle.delay_ms.basis}}}};
 }
 
 void to_json(nlohmann::json& j, const Alert& alert) {
@@ -126,7 +176,8 @@ void to_json(nlohmann::json& j, const StatusView& status) {
                      {"http",
                       {{"connections_open", status.http.open},
                        {"connections_refused", status.http.refused},
-                       {"requests_timed_out", status.http.timed_out}}}};
+                       {"requests_timed_out", status.http.timed_out},
+                       {"requests_host_refused", status.http.host_refused}}}};
 }
 
 }  // namespace mocaplink::web

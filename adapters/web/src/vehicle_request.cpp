@@ -30,7 +30,10 @@ std::optional<ApiError> check_keys(const json& object, const std::vector<std::st
       message += " (did you mean \"" + std::string(*best) + "\"?)";
     } else {
       message += "; expected one of:";
-      for (std::string_view candidate : known) message += " " + std::string(candidate);
+      for (std::string_view candidate : known) {
+        message += ' ';
+        message += candidate;
+      }
     }
     return invalid(key, message);
   }
@@ -127,6 +130,40 @@ ApiResult<UpdateVehicle> parse_vehicle_patch(std::string_view json_text, std::st
   if (auto error = read_paused(object, update.paused)) return *error;
   if (auto error = read_keys(object, update.keys)) return *error;
   return update;
+}
+
+ApiResult<SetupVehicle> parse_vehicle_setup(std::string_view json_text, std::string name) {
+  auto parsed = parse_object(json_text);
+  if (!parsed.ok()) return parsed.error();
+  const json& object = parsed.value();
+  if (auto error = check_keys(object, {"apply", "reboot"})) return *error;
+  if (object.size() != 1) {
+    return ApiError{422, "give exactly one of apply (parameter names) or reboot (true)", ""};
+  }
+  SetupVehicle setup;
+  setup.name = std::move(name);
+  if (object.contains("reboot")) {
+    if (!object.at("reboot").is_boolean() || !object.at("reboot").get<bool>()) {
+      return invalid("reboot", "must be true");
+    }
+    setup.reboot = true;
+    return setup;
+  }
+  const json& apply = object.at("apply");
+  constexpr std::size_t kMaxNames = 32;  // more than any set-up list holds
+  if (!apply.is_array() || apply.empty() || apply.size() > kMaxNames) {
+    return invalid("apply", "must be a list of 1 to 32 parameter names");
+  }
+  for (const json& item : apply) {
+    const std::string parameter = item.is_string() ? item.get<std::string>() : std::string();
+    const bool spelled = !parameter.empty() && parameter.size() <= 16 &&
+                         std::all_of(parameter.begin(), parameter.end(), [](char c) {
+                           return (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+                         });
+    if (!spelled) return invalid("apply", "parameter names are 1 to 16 of A-Z, 0-9 and _");
+    setup.apply.push_back(parameter);
+  }
+  return setup;
 }
 
 ApiError refusal(const config::ConfigError& error) {

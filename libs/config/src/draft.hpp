@@ -15,6 +15,7 @@
 
 #include "mocaplink/config/config.hpp"
 #include "mocaplink/config/config_error.hpp"
+#include "mocaplink/config/load.hpp"
 
 namespace mocaplink::config::detail {
 
@@ -108,6 +109,7 @@ struct ConfigDraft {
   std::vector<TrackingSite> tracking_sites;
   Field<HostPort> listen;
   Field<std::string> token;
+  Field<std::vector<HostPort>> allowed_hosts;
   Field<std::uint32_t> max_connections_per_client;
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")
 };
@@ -149,10 +151,12 @@ inline constexpr const char* kGpsNeedsOrigin =
     "GPS-type messages (HIL_GPS, GPS_INPUT) need the [origin] table (latitude_deg, longitude_deg, "
     "altitude_m)";
 
+/// One [http] allowed_hosts entry ("NAME", "NAME:PORT", "[V6]:PORT"), appended to the draft's list
+/// (--http-allow-host; keys.cpp).
+void add_allowed_host(ConfigDraft& draft, const Value& value, Diagnostics& diagnostics);
+
 /// Applies command-line overrides to a draft (overrides.cpp).
-void apply_command_line(const std::optional<std::string>& source,
-                        const std::optional<std::string>& http,
-                        const std::vector<std::string>& vehicles, ConfigDraft& draft,
+void apply_command_line(const CommandLineOverrides& overrides, ConfigDraft& draft,
                         Diagnostics& diagnostics);
 
 /// A draft holding exactly `config`, every field attributed to `origin` (load.cpp) — except the

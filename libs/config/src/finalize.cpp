@@ -175,6 +175,11 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
     diagnostics.warning(v.rate_hz.where, v.rate_hz.key,
                         "ArduPilot's external-navigation input is meant for at most 50 Hz");
   }
+  if (out.profile == core::Profile::automatic && out.rate_hz > 50.0) {
+    diagnostics.warning(v.rate_hz.where, v.rate_hz.key,
+                        "profile auto may find ArduPilot, whose external-navigation input is meant "
+                        "for at most 50 Hz");
+  }
   if (vehicle.link.kind == LinkKind::serial) {
     // The one bandwidth rule (core::serial_bandwidth_warning): `check`, `run` and a dashboard
     // POST all report it from here.
@@ -247,6 +252,7 @@ HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
   HttpSettings http;
   if (d.listen.value) http.listen = *d.listen.value;
   if (d.token.value) http.token = *d.token.value;
+  if (d.allowed_hosts.value) http.allowed_hosts = *d.allowed_hosts.value;
   if (d.max_connections_per_client.value) {
     http.max_connections_per_client = *d.max_connections_per_client.value;
   }

@@ -183,9 +183,41 @@ void http_max_connections_per_client(ConfigDraft& d, const Value& v, Diagnostics
   assign(d.max_connections_per_client, v, std::move(parsed), diag);
 }
 
-constexpr std::array<KeySpec<ConfigDraft>, 3> kHttpKeys = {{
+ValueOrError<HostPort> parse_allowed_host(const std::string& text) {
+  if (const auto scheme = text.find("://"); scheme != std::string::npos) {
+    return ValueOrError<HostPort>::failure(
+        "expected a host name, not a URL: write " +
+        quoted(std::string_view(text).substr(scheme + 3, text.find('/', scheme + 3) - scheme - 3)) +
+        " for " + quoted(text));
+  }
+  auto parsed = parse_host_port(text, HostPortRules{.port_optional = true});
+  if (!parsed) {
+    return ValueOrError<HostPort>::failure(
+        parsed.error() +
+        " (expected a host name or address as the browser's address bar gives "
+        "it, optionally with :PORT, e.g. \"lab-pc\" or \"lab-pc.local:8080\")");
+  }
+  return parsed;
+}
+
+void http_allowed_hosts(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  std::vector<HostPort> hosts;
+  for (const std::string& entry : v.list()) {
+    auto parsed = parse_allowed_host(entry);
+    if (!parsed) {
+      assign(d.allowed_hosts, v, ValueOrError<std::vector<HostPort>>::failure(parsed.error()),
+             diag);
+      return;
+    }
+    hosts.push_back(std::move(parsed).value());
+  }
+  assign(d.allowed_hosts, v, ValueOrError<std::vector<HostPort>>(std::move(hosts)), diag);
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 4> kHttpKeys = {{
     {"listen", ValueType::string, http_listen},
     {"token", ValueType::string, http_token},
+    {"allowed_hosts", ValueType::string_list, http_allowed_hosts},
     {"max_connections_per_client", ValueType::integer, http_max_connections_per_client},
 }};
 
@@ -319,6 +351,22 @@ std::span<const KeySpec<ConfigDraft>> tracking_keys() {
 }
 std::span<const KeySpec<ConfigDraft>> http_keys() {
   return kHttpKeys;
+}
+
+void add_allowed_host(ConfigDraft& draft, const Value& value, Diagnostics& diagnostics) {
+  auto parsed = parse_allowed_host(value.text());
+  if (!parsed) {
+    diagnostics.error(value.where, value.key, parsed.error());
+    return;
+  }
+  Field<std::vector<HostPort>>& field = draft.allowed_hosts;
+  if (!field.present) {  // the file's list, if any, stays attributed to the file
+    field.present = true;
+    field.where = value.where;
+    field.key = value.key;
+  }
+  if (!field.value) field.value.emplace();
+  field.value->push_back(std::move(parsed).value());
 }
 const char* expected_name(ValueType type) {
   switch (type) {

@@ -86,6 +86,7 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin,
   d.tracking = config.tracking;
   d.listen = given(config.http.listen, where, "http.listen");
   d.token = given(config.http.token, where, "http.token");
+  d.allowed_hosts = given(config.http.allowed_hosts, where, "http.allowed_hosts");
   d.max_connections_per_client =
       given(config.http.max_connections_per_client, where, "http.max_connections_per_client");
   return d;
@@ -132,8 +133,7 @@ ConfigResult load_config(std::string_view toml_text, std::string_view filename,
     result.errors = std::move(diagnostics.errors);
     return result;
   }
-  detail::apply_command_line(overrides.source, overrides.http, overrides.vehicles, draft,
-                             diagnostics);
+  detail::apply_command_line(overrides, draft, diagnostics);
   return finish(draft, diagnostics);
 }
 
@@ -142,8 +142,7 @@ ConfigResult apply_overrides(const Config& base, const CommandLineOverrides& ove
   detail::ConfigDraft draft = detail::draft_from_config(base, base_name);
   draft.validate_source = validate_source;
   detail::Diagnostics diagnostics;
-  detail::apply_command_line(overrides.source, overrides.http, overrides.vehicles, draft,
-                             diagnostics);
+  detail::apply_command_line(overrides, draft, diagnostics);
   return finish(draft, diagnostics);
 }
 

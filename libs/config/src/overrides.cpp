@@ -153,18 +153,20 @@ std::optional<VehicleDraft> parse_vehicle_spec(std::string_view spec, const Wher
 
 }  // namespace
 
-void apply_command_line(const std::optional<std::string>& source,
-                        const std::optional<std::string>& http,
-                        const std::vector<std::string>& vehicles, ConfigDraft& draft,
+void apply_command_line(const CommandLineOverrides& overrides, ConfigDraft& draft,
                         Diagnostics& diagnostics) {
-  if (source) {
-    Value value{*source, Where{"--source"}, ""};
+  if (overrides.source) {
+    Value value{*overrides.source, Where{"--source"}, ""};
     find_spec(mocap_keys(), "source").apply(draft, value, diagnostics);
   }
-  if (http) {
-    Value value{*http, Where{"--http"}, ""};
+  if (overrides.http) {
+    Value value{*overrides.http, Where{"--http"}, ""};
     find_spec(http_keys(), "listen").apply(draft, value, diagnostics);
   }
+  for (const std::string& host : overrides.http_allow_hosts) {
+    add_allowed_host(draft, Value{host, Where{"--http-allow-host"}, ""}, diagnostics);
+  }
+  const std::vector<std::string>& vehicles = overrides.vehicles;
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
     const Where where{"--vehicle " + std::to_string(i + 1)};
     auto spec = parse_vehicle_spec(vehicles[i], where, diagnostics);

@@ -46,7 +46,7 @@ TEST(SerialLink, RawBytesBothWaysThroughAPty) {
   SerialLink link(loop, pty.slave_path(), 921600, test::options());
   std::vector<std::uint32_t> msgids;
   link.start([&](const mavlink::FrameView& f, core::HostTime) { msgids.push_back(f.msgid); }, {});
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::up; }));
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::up; }));
   EXPECT_EQ(link.url(), "serial://" + pty.slave_path() + "?baud=921600");
 
   // Out: raw mode means 0x0a/0x0d and every other byte pass unchanged.
@@ -77,8 +77,10 @@ TEST(SerialLink, MissingDeviceStaysDownAndRetries) {
   SerialLink link(loop, "/dev/mocaplink-no-such-tty", 57600,
                   test::options(std::chrono::milliseconds(5)));
   int downs = 0;
-  link.start({}, [&](LinkState s, const std::string&) { downs += s == LinkState::down ? 1 : 0; });
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::down; }));
+  link.start({}, [&](TransportState s, const std::string&) {
+    downs += s == TransportState::down ? 1 : 0;
+  });
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::down; }));
   EXPECT_FALSE(link.send(kHeartbeat));
   EXPECT_EQ(link.counters().dropped_down, 1u);
   EXPECT_EQ(link.counters().connects, 0u);

@@ -33,7 +33,7 @@ TEST(TcpLink, ReconnectsAfterTheServerClosesAndDropsFramesWhileDown) {
                test::options(std::chrono::milliseconds(5), std::chrono::milliseconds(20)));
   std::vector<std::uint32_t> msgids;
   link.start([&](const mavlink::FrameView& f, core::HostTime) { msgids.push_back(f.msgid); }, {});
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::up && server; }));
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::up && server; }));
 
   // Out: two frames arrive byte-exact, in order.
   ASSERT_TRUE(link.send(kHeartbeat));
@@ -51,10 +51,10 @@ TEST(TcpLink, ReconnectsAfterTheServerClosesAndDropsFramesWhileDown) {
 
   // The server goes away: the link goes down, drops frames, and reconnects when it can.
   accept();
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::down; }));
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::down; }));
   EXPECT_FALSE(link.send(kHeartbeat));
   EXPECT_GE(link.counters().dropped_down, 1u);
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::up && server; }));
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::up && server; }));
   EXPECT_EQ(link.counters().connects, 2u);
   ASSERT_TRUE(link.send(kHeartbeat));
   ASSERT_TRUE(run_until(loop, [&] { return link.counters().frames_sent == 3; }));
@@ -63,7 +63,7 @@ TEST(TcpLink, ReconnectsAfterTheServerClosesAndDropsFramesWhileDown) {
   EXPECT_EQ(again, kHeartbeat);
 
   link.close(std::chrono::milliseconds(100));
-  EXPECT_EQ(link.state(), LinkState::closed);
+  EXPECT_EQ(link.state(), TransportState::closed);
 }
 
 TEST(TcpLink, RefusedConnectionsAreRetried) {
@@ -77,7 +77,7 @@ TEST(TcpLink, RefusedConnectionsAreRetried) {
                test::options(std::chrono::milliseconds(5), std::chrono::milliseconds(10)));
   link.start({}, {});
   ASSERT_TRUE(run_until(loop, [&] { return link.counters().refused >= 2; }));
-  EXPECT_EQ(link.state(), LinkState::down);
+  EXPECT_EQ(link.state(), TransportState::down);
   EXPECT_FALSE(link.send(kHeartbeat));
 }
 

@@ -65,7 +65,7 @@ struct LinkToVehicle {
 TEST(UdpLink, SendsAndReadsRepliesOnTheSameSocket) {
   LinkToVehicle t;
   auto& [loop, vehicle, link, received] = t;
-  ASSERT_EQ(link.state(), LinkState::up);
+  ASSERT_EQ(link.state(), TransportState::up);
   EXPECT_EQ(link.url(), "udp://127.0.0.1:" + std::to_string(vehicle.port()));
 
   ASSERT_TRUE(link.send(kHeartbeat));
@@ -94,7 +94,7 @@ TEST(UdpLink, SendsAndReadsRepliesOnTheSameSocket) {
 TEST(UdpLink, TheLargestDatagramArrivesWhole) {
   LinkToVehicle t;
   auto& [loop, vehicle, link, received] = t;
-  ASSERT_EQ(link.state(), LinkState::up);
+  ASSERT_EQ(link.state(), TransportState::up);
   ASSERT_TRUE(link.send(kHeartbeat));  // the vehicle learns where to reply
   ASSERT_TRUE(run_until(loop, [&] { return vehicle.datagrams.size() == 1; }));
   constexpr std::size_t kLargestPayload = 65507;
@@ -112,7 +112,7 @@ TEST(UdpLink, TheLargestDatagramArrivesWhole) {
 TEST(UdpLink, BatchArrivesAsDatagramsInOrder) {
   LinkToVehicle t;
   auto& [loop, vehicle, link, received] = t;
-  ASSERT_EQ(link.state(), LinkState::up);
+  ASSERT_EQ(link.state(), TransportState::up);
   // More frames than one sendmmsg takes, each told apart by its sequence byte.
   std::vector<std::vector<std::uint8_t>> frames;
   std::vector<std::span<const std::uint8_t>> spans;
@@ -141,7 +141,7 @@ TEST(UdpLink, SurvivesPortUnreachableAndDeliversOnceSomeoneListens) {
     (void)link.send(kHeartbeat);
     return link.counters().refused > 0;
   }));
-  EXPECT_EQ(link.state(), LinkState::up);
+  EXPECT_EQ(link.state(), TransportState::up);
   EXPECT_EQ(link.counters().send_errors, 0u);
 
   Vehicle vehicle(loop, port);
@@ -179,16 +179,16 @@ TEST(UdpLink, SigningPolicyDropsUnsignedAndForgedFrames) {
 TEST(UdpLink, UnresolvableHostIsDownAndDropsFrames) {
   asio::io_context loop;
   UdpLink link(loop, "no-such-host.invalid", 14550, test::options(std::chrono::milliseconds(10)));
-  std::vector<LinkState> states;
-  link.start({}, [&](LinkState s, const std::string&) { states.push_back(s); });
+  std::vector<TransportState> states;
+  link.start({}, [&](TransportState s, const std::string&) { states.push_back(s); });
   // A name is resolved off the loop: start() returns before the answer.
-  EXPECT_EQ(link.state(), LinkState::connecting);
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::down; }));
+  EXPECT_EQ(link.state(), TransportState::connecting);
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::down; }));
   EXPECT_FALSE(link.send(kHeartbeat));
   EXPECT_EQ(link.counters().dropped_down, 1u);
   link.close(std::chrono::milliseconds(0));
-  EXPECT_EQ(link.state(), LinkState::closed);
-  EXPECT_EQ(states.back(), LinkState::closed);
+  EXPECT_EQ(link.state(), TransportState::closed);
+  EXPECT_EQ(states.back(), TransportState::closed);
 }
 
 TEST(UdpLink, HostNameIsResolvedWithoutBlockingTheLoop) {
@@ -196,8 +196,9 @@ TEST(UdpLink, HostNameIsResolvedWithoutBlockingTheLoop) {
   Vehicle vehicle(loop);
   UdpLink link(loop, "localhost", vehicle.port(), test::options());
   link.start({}, {});
-  EXPECT_EQ(link.state(), LinkState::connecting);  // the loop has not run: nothing answered yet
-  ASSERT_TRUE(run_until(loop, [&] { return link.state() == LinkState::up; }));
+  EXPECT_EQ(link.state(),
+            TransportState::connecting);  // the loop has not run: nothing answered yet
+  ASSERT_TRUE(run_until(loop, [&] { return link.state() == TransportState::up; }));
   // "localhost" may resolve to ::1 first; our vehicle listens on 127.0.0.1 only, so only check
   // that the link opened and sends.
   EXPECT_TRUE(link.send(kHeartbeat));
@@ -207,10 +208,10 @@ TEST(UdpLink, HostNameIsResolvedWithoutBlockingTheLoop) {
 TEST(UdpLink, DestroyedWhileResolvingIsSafe) {
   // The answer to a name arrives after the link is gone: it must not touch it (ASan checks).
   asio::io_context loop;
-  std::vector<LinkState> states;
+  std::vector<TransportState> states;
   {
     UdpLink link(loop, "no-such-host.invalid", 14550, test::options());
-    link.start({}, [&](LinkState s, const std::string&) { states.push_back(s); });
+    link.start({}, [&](TransportState s, const std::string&) { states.push_back(s); });
   }
   const std::size_t before = states.size();  // whatever the destructor itself reported
   // run() returns only when no work is left: the resolver's answer has come and been handled.

@@ -16,7 +16,7 @@ StatusView healthy() {
   v.name = "quad1";
   v.body = "Quad1";
   v.link = "udp://10.0.0.21:14540";
-  v.link_state = LinkState::up;
+  v.link_state = LinkHealth::up;
   v.origin = OriginState::confirmed;
   v.agreement.verdict = AgreementVerdict::agree;
   s.vehicles = {v};
@@ -48,12 +48,12 @@ TEST(Alerts, EachConditionRaisesItsAlert) {
   s.vehicles[0].agreement.verdict = AgreementVerdict::disagree;
   s.vehicles.push_back(s.vehicles[0]);
   s.vehicles[1].name = "rover";
-  s.vehicles[1].link_state = LinkState::silent;
+  s.vehicles[1].link_state = LinkHealth::silent;
   s.vehicles[1].origin = OriginState::not_needed;
   s.vehicles[1].agreement.verdict = AgreementVerdict::unknown;
   s.vehicles.push_back(s.vehicles[1]);
   s.vehicles[2].name = "boat";
-  s.vehicles[2].link_state = LinkState::down;
+  s.vehicles[2].link_state = LinkHealth::down;
   s.alerts.push_back(Alert{AlertLevel::warning, "daemon_note", "x", "kept first"});
   monitor.annotate(s, 0.0);
   EXPECT_EQ(kinds(s), (std::vector<std::string>{

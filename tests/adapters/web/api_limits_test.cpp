@@ -70,7 +70,7 @@ TEST_F(ApiLimitsTest, AClientAddressOverItsCapIsRefusedWhileOthersAreServed) {
   EXPECT_EQ(counters.at("connections_refused"), 0);
 
   // The 33rd from 127.0.0.1 is closed without an answer.
-  const int refused = connect_and_send(port, "GET /api/status HTTP/1.1\r\nHost: x\r\n\r\n");
+  const int refused = connect_and_send(port, "GET /api/status HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
   ASSERT_GE(refused, 0);
   EXPECT_EQ(read_until_closed(refused), "");
   ::close(refused);

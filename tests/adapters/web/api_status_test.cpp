@@ -69,6 +69,9 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_EQ(station["bridge_latency_ms"],
             (json{{"last", 0.12}, {"p50", 0.1}, {"p99", 0.45}, {"max", 0.9}}));
   EXPECT_EQ(station["late_frames_skipped"], 5);
+  EXPECT_EQ(station["rejected"], 2);
+  EXPECT_EQ(station["rejected_reason"],
+            "malformed datagram at byte 80: trailing non-zero bytes after 1 item");
   ASSERT_EQ(station["bodies"].size(), 3U);
   const json& body1 = station["bodies"][0];
   EXPECT_EQ(body1["name"], "Body1");
@@ -109,9 +112,11 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
                                      {"mode", "POSCTL"},
                                      {"age_s", 0.2}}));
   EXPECT_EQ(quad["timesync"], (json{{"state", "synced"}, {"offset_ms", 1234.5}, {"rtt_ms", 0.8}}));
-  EXPECT_EQ(quad["origin"], (json{{"state", "confirmed"}}));
-  EXPECT_EQ(quad["agreement"],
-            (json{{"verdict", "agree"}, {"yaw_offset_deg", 0.4}, {"position_offset_m", 0.012}}));
+  EXPECT_EQ(quad["origin"], (json{{"state", "confirmed"}, {"advice", nullptr}}));
+  EXPECT_EQ(quad["agreement"], (json{{"verdict", "agree"},
+                                     {"yaw_offset_deg", 0.4},
+                                     {"position_offset_m", 0.012},
+                                     {"reason", nullptr}}));
   const json& rover = s["vehicles"][1];
   EXPECT_EQ(rover["timesync"]["state"], "off");
   EXPECT_TRUE(rover["timesync"]["offset_ms"].is_null());
@@ -130,7 +135,8 @@ TEST_F(ApiTest, StatusCarriesTheDerivedAlerts) {
   EXPECT_TRUE(has("body_lost", "Body3", "warning")) << alerts.dump();  // no vehicle follows it
   EXPECT_TRUE(has("origin_not_confirmed", "rover", "warning")) << alerts.dump();
   EXPECT_TRUE(has("agreement_failing", "rover", "error")) << alerts.dump();
-  EXPECT_EQ(alerts.size(), 3U) << alerts.dump();
+  EXPECT_TRUE(has("setup_blocked", "quad1", "error")) << alerts.dump();  // EKF2_EV_CTRL 0
+  EXPECT_EQ(alerts.size(), 4U) << alerts.dump();
 }
 
 TEST_F(ApiTest, VehiclesListAndOneVehicle) {

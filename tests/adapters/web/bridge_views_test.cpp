@@ -1,4 +1,4 @@
-// Bridge snapshot → StatusView: field mapping, measured send rate, MAVLink names and modes.
+// Bridge snapshot → StatusView: field mapping, the core's send rate, MAVLink names and modes.
 #include <gtest/gtest.h>
 
 #include "mocaplink/web/bridge_views.hpp"
@@ -32,7 +32,7 @@ core::BridgeSnapshot snapshot_at(double t_s, std::uint64_t odometry_sent) {
   v.sender.counters.sent[static_cast<std::size_t>(core::MessageKind::odometry)] = odometry_sent;
   v.sender.counters.heartbeats = 2;
   v.sender.counters.frames = odometry_sent + 2;
-  v.vehicle.link = core::LinkState::alive;
+  v.vehicle.link = core::HeartbeatState::alive;
   v.vehicle.heartbeat = core::VehicleHeartbeat{1, 2, 12, 128 | 1, 3U << 16, 4, true};
   v.vehicle.last_heartbeat = host_time_from_ns(0);
   v.vehicle.last_message = host_time_from_ns(0);
@@ -65,6 +65,12 @@ TEST(BridgeViews, LateFramesSkippedFromTheDaemon) {
   EXPECT_EQ(builder.build(snapshot_at(2.0, 100), context).station.late_frames_skipped, 0U);
   context.late_frames_skipped = 42;
   EXPECT_EQ(builder.build(snapshot_at(2.1, 100), context).station.late_frames_skipped, 42U);
+  // The source's rejections pass through as the daemon read them.
+  context.source_rejected = 7;
+  context.source_rejected_reason = "datagram from 10.0.0.9, not 10.0.0.5 (from=)";
+  const auto station = builder.build(snapshot_at(2.2, 100), context).station;
+  EXPECT_EQ(station.rejected, 7U);
+  EXPECT_EQ(station.rejected_reason, "datagram from 10.0.0.9, not 10.0.0.5 (from=)");
 }
 
 TEST(BridgeViews, MapsEveryField) {
@@ -86,7 +92,7 @@ TEST(BridgeViews, MapsEveryField) {
   EXPECT_EQ(v.sent.at("ODOMETRY"), 100U);
   EXPECT_EQ(v.sent.at("HEARTBEAT"), 2U);
   EXPECT_EQ(v.sent_total, 102U);
-  EXPECT_EQ(v.link_state, LinkState::up);
+  EXPECT_EQ(v.link_state, LinkHealth::up);
   EXPECT_DOUBLE_EQ(*v.last_heard_s, 2.0);
   ASSERT_TRUE(v.heartbeat.has_value());
   EXPECT_EQ(v.heartbeat->type, "quadrotor");
@@ -101,19 +107,60 @@ TEST(BridgeViews, MapsEveryField) {
   EXPECT_EQ(v.agreement.yaw_offset_deg, 90.0);
 
   const BridgeStatusContext down{"sim://", "refused", {"udp://x:1"}, {true}};
-  EXPECT_EQ(builder.build(snapshot_at(2.1, 100), down).vehicles[0].link_state, LinkState::down);
+  EXPECT_EQ(builder.build(snapshot_at(2.1, 100), down).vehicles[0].link_state, LinkHealth::down);
 }
 
-TEST(BridgeViews, SendRateIsMeasuredOverAtLeastASecond) {
+TEST(BridgeViews, AnUnknownAgreementSaysWhy) {
+  // Issue 31: the dashboard says why there is no verdict instead of "waiting" forever.
   BridgeStatusBuilder builder(host_time_from_ns(0));
   const BridgeStatusContext context{"sim://", "", {"udp://h:1"}, {}};
-  EXPECT_DOUBLE_EQ(builder.build(snapshot_at(0.0, 0), context).vehicles[0].send_rate_hz, 0.0);
-  EXPECT_DOUBLE_EQ(builder.build(snapshot_at(0.5, 25), context).vehicles[0].send_rate_hz, 0.0);
-  // 1.25 s after the window start (t = 0): 100 poses → 80 Hz.
-  EXPECT_DOUBLE_EQ(builder.build(snapshot_at(1.25, 100), context).vehicles[0].send_rate_hz, 80.0);
-  // The window restarts at t = 1.25: until a second later the last figure stays.
-  EXPECT_DOUBLE_EQ(builder.build(snapshot_at(1.5, 110), context).vehicles[0].send_rate_hz, 80.0);
-  EXPECT_DOUBLE_EQ(builder.build(snapshot_at(2.25, 120), context).vehicles[0].send_rate_hz, 20.0);
+  core::BridgeSnapshot s = snapshot_at(2.0, 100);
+  core::VehicleStatus& in = s.vehicles[0];
+  in.vehicle.agreement = core::Agreement{};
+  EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
+            "the mocap body Quad1 is not tracked");
+  s.bodies[0].estimate.state = core::TrackingState::tracking;
+  auto& attitude = in.streams.streams[static_cast<std::size_t>(core::VehicleStream::attitude)];
+  attitude.state = core::StreamState::silent;
+  attitude.asked = true;
+  in.sender.counters.interval_requests = 4;
+  in.sender.counters.data_stream_requests = 3;
+  VehicleView v = builder.build(s, context).vehicles[0];
+  EXPECT_EQ(v.agreement.reason,
+            "no ATTITUDE from the vehicle after asking: is this port's MAVLink enabled?");
+  // The estimator's named for the heartbeat's autopilot; not part of the agreement's reason.
+  EXPECT_EQ(v.streams, (std::map<std::string, std::string>{{"ATTITUDE", "silent"},
+                                                           {"ESTIMATOR_STATUS", "idle"},
+                                                           {"LOCAL_POSITION_NED", "idle"}}));
+  EXPECT_EQ(v.sent.at("SET_MESSAGE_INTERVAL"), 4U);
+  EXPECT_EQ(v.sent.at("REQUEST_DATA_STREAM"), 3U);
+  // Both messages arriving: the vehicle settling after its boot, then a disagreement on hold.
+  for (auto& stream : in.streams.streams) stream.state = core::StreamState::arriving;
+  EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
+            "comparing the vehicle's estimate with mocap");
+  in.vehicle.agreement.settling = true;
+  EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
+            "the vehicle booted less than 15 s ago: its estimate is compared once it has settled");
+  in.vehicle.agreement.settling = false;
+  in.vehicle.agreement.disagreeing_since = host_time_from_ns(800'000'000);  // 1.2 s before
+  EXPECT_EQ(
+      builder.build(s, context).vehicles[0].agreement.reason,
+      "the vehicle's estimate is beyond a threshold for 1.2 s: it disagrees if that lasts 3 s");
+  in.vehicle.heartbeat.reset();
+  EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
+            "no HEARTBEAT from the vehicle yet");
+  in.vehicle.agreement.verdict = core::AgreementVerdict::agree;
+  EXPECT_FALSE(builder.build(s, context).vehicles[0].agreement.reason);
+}
+
+TEST(BridgeViews, SendRateIsTheCoresWhateverWasAskedBefore) {
+  // The core measures it over its fixed window (sender.hpp); the first view shows it as is.
+  const BridgeStatusBuilder builder(host_time_from_ns(0));
+  const BridgeStatusContext context{"sim://", "", {"udp://h:1"}, {}};
+  core::BridgeSnapshot s = snapshot_at(0.5, 25);
+  s.vehicles[0].sender.send_rate_hz = 49.5;
+  EXPECT_DOUBLE_EQ(builder.build(s, context).vehicles[0].send_rate_hz, 49.5);
+  EXPECT_DOUBLE_EQ(builder.build(s, context).vehicles[0].send_rate_hz, 49.5);
 }
 
 TEST(BridgeViews, MavlinkNamesAndFlightModes) {

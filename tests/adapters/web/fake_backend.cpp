@@ -79,15 +79,29 @@ FakeBackend::FakeBackend() {
   }
   // quad1 talks back: heartbeat, timesync, origin confirmed, agreeing estimate.
   VehicleView& q = vehicles_[0].view;
-  q.link_state = LinkState::up;
+  q.link_state = LinkHealth::up;
   q.last_heard_s = 0.2;
   q.heartbeat = HeartbeatView{"quadrotor", "px4", false, "POSCTL", 0.2};
   q.timesync = TimesyncView{TimesyncState::synced, 1234.5, 0.8};
   q.origin = OriginState::confirmed;
   q.agreement = AgreementView{AgreementVerdict::agree, 0.4, 0.012};
+  // quad1's set-up list (what core::VehicleSetup reports for a PX4 1.14 left at its GPS defaults).
+  q.autopilot = AutopilotView{"px4", "1.14.3", "px4"};
+  q.setup.state = "blocked";
+  q.setup.items = {
+      {"EKF2_EV_CTRL", 0.0, "15 (horizontal and vertical position, velocity, yaw)", "blocks",
+       "wrong", "EKF2 fuses external vision only for the bits set", 15.0, false, "none", ""},
+      {"EKF2_HGT_REF", 1.0, "3 (vision)", "degrades", "wrong",
+       "height from the barometer drifts indoors", 3.0, true, "none", ""},
+      {"EKF2_GPS_CTRL", 0.0, "0 (no GNSS fusion)", "advice", "ok", "no GNSS indoors", std::nullopt,
+       false, "none", ""},
+  };
+  q.statustext = {{"warning", "Preflight Fail: ekf2 missing data", 3.5}};
+  q.estimator = EstimatorView{"ESTIMATOR_STATUS", {"attitude"}, {"no horizontal position"}, 0.3};
+  q.delay_ms = DelayView{12.0, 0.0, "EKF2_EV_DELAY", 0.0, "capture to mocaplink (median) 11 ms"};
   // rover's own estimate disagrees (a wrong north axis, say).
   VehicleView& r = vehicles_[1].view;
-  r.link_state = LinkState::up;
+  r.link_state = LinkHealth::up;
   r.last_heard_s = 0.5;
   r.heartbeat = HeartbeatView{"ground_rover", "ardupilotmega", true, "GUIDED", 0.5};
   r.agreement = AgreementView{AgreementVerdict::disagree, 89.7, 0.35};
@@ -137,6 +151,8 @@ StatusView FakeBackend::status() {
   s.station.dropped = 3;
   s.station.bridge_latency_ms = BridgeLatencyView{0.12, 0.1, 0.45, 0.9};
   s.station.late_frames_skipped = 5;
+  s.station.rejected = 2;
+  s.station.rejected_reason = "malformed datagram at byte 80: trailing non-zero bytes after 1 item";
   const char* names[] = {"Body1", "Body2", "Body3"};
   for (std::size_t i = 0; i < 3; ++i) {
     BodyView b;
@@ -191,6 +207,41 @@ std::optional<ApiError> FakeBackend::apply(const VehicleChange& change) {
           }
           vehicles_.erase(it);
           std::erase_if(config_.vehicles, [&](const auto& v) { return v.spec.name == c.name; });
+        } else if constexpr (std::is_same_v<T, SetupVehicle>) {
+          auto it = find(c.name);
+          if (it == vehicles_.end()) {
+            refused = ApiError{404, "no vehicle named " + c.name, ""};
+            return;
+          }
+          // Like core::VehicleSetup: only wrong items with a fix, never on an armed vehicle.
+          SetupView& setup = it->view.setup;
+          if (it->view.heartbeat && it->view.heartbeat->armed) {
+            refused = ApiError{409, "the vehicle is armed", c.reboot ? "reboot" : "apply"};
+            return;
+          }
+          for (const std::string& name : c.apply) {
+            const auto item = std::find_if(setup.items.begin(), setup.items.end(), [&](auto& i) {
+              return i.parameter == name && i.status == "wrong" && i.fix;
+            });
+            if (item == setup.items.end()) {
+              refused = ApiError{409, name + " is not a wrong parameter of the list", "apply"};
+              return;
+            }
+          }
+          for (const std::string& name : c.apply) {
+            for (SetupItemView& item : setup.items) {
+              if (item.parameter != name) continue;
+              item.current = item.fix;
+              item.fix.reset();
+              item.status = "ok";
+              item.apply = "confirmed";
+              item.apply_note = "set to " + std::to_string(static_cast<int>(*item.current));
+            }
+          }
+          const bool blocks = std::any_of(setup.items.begin(), setup.items.end(), [](auto& i) {
+            return i.severity == "blocks" && i.status != "ok";
+          });
+          setup.state = blocks ? "blocked" : "ready";
         } else {
           auto it = find(c.name);
           if (it == vehicles_.end()) {

@@ -38,18 +38,19 @@ TEST(North, AxisOrAngle) {
 }
 
 TEST(Profile, NamesAndOriginNeeds) {
-  for (const char* name : {"px4", "ardupilot", "px4-gps", "ardupilot-gps", "classic", "custom"}) {
+  for (const char* name :
+       {"px4", "ardupilot", "px4-gps", "ardupilot-gps", "classic", "custom", "auto"}) {
     const auto profile = parse_profile(name);
     ASSERT_TRUE(profile) << name;
     EXPECT_EQ(core::to_string(profile.value()), name);
   }
   EXPECT_EQ(parse_profile("px4_gps").error(),
             "unknown profile \"px4_gps\"; did you mean \"px4-gps\"? (one of: px4, ardupilot, "
-            "px4-gps, ardupilot-gps, classic, custom)");
+            "px4-gps, ardupilot-gps, classic, custom, auto)");
   // Spellings are exact (lower case); the suggestion ignores case.
   EXPECT_EQ(parse_profile("PX4").error(),
             "unknown profile \"PX4\"; did you mean \"px4\"? (one of: px4, ardupilot, px4-gps, "
-            "ardupilot-gps, classic, custom)");
+            "ardupilot-gps, classic, custom, auto)");
 }
 
 TEST(MessageKind, NamesAndOriginNeeds) {

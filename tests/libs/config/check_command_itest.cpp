@@ -54,6 +54,10 @@ TEST(CheckCommand, GoodFileExitsZeroWithSummary) {
   EXPECT_THAT(run.stdout_text,
               testing::StartsWith("ok: 3 vehicles, source vicon://192.168.1.3?mode=push\n"));
   EXPECT_THAT(run.stdout_text, testing::HasSubstr("quad1: body Quad1, udp://192.168.1.21:14540"));
+  // lab.toml's px4 and ardupilot vehicles are pointed at profile auto (issue 28).
+  EXPECT_THAT(run.stdout_text,
+              testing::HasSubstr("  hint: quad1: profile = \"auto\" sends the same and checks the "
+                                 "vehicle's set-up by whichever autopilot it runs\n"));
   EXPECT_EQ(run.stderr_text, "");
 }
 

@@ -55,7 +55,8 @@ TEST(Examples, SinglePx4Quad) {
   EXPECT_EQ(c.mocap.source.scheme, "vicon");
   EXPECT_EQ(c.mocap.up, core::axis::pos_z);
   ASSERT_EQ(c.vehicles.size(), 1u);
-  EXPECT_EQ(c.vehicles[0].spec.profile, core::Profile::px4);
+  EXPECT_EQ(c.vehicles[0].spec.profile,
+            core::Profile::automatic);  // PX4 or ArduPilot, as the vehicle says
   EXPECT_EQ(c.vehicles[0].spec.body_axes.up(), core::axis::pos_z);
   EXPECT_EQ(c.vehicles[0].spec.rate_hz, 50.0);
 }

@@ -168,6 +168,35 @@ TEST(Overrides, ErrorsNameTheOption) {
       }));
 }
 
+TEST(Overrides, AllowHostAddsToTheFilesList) {
+  const std::string file = R"([mocap]
+source = "sim://"
+[http]
+allowed_hosts = ["lab-pc"]
+)";
+  CommandLineOverrides o;
+  o.http_allow_hosts = {"Lab-PC.local", "tunnel:9000"};
+  const auto result = load_config(file, "lab.toml", o);
+  ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
+  EXPECT_EQ(result.config->http.allowed_hosts,
+            (std::vector<HostPort>{{"lab-pc", 0}, {"lab-pc.local", 0}, {"tunnel", 9000}}));
+
+  const auto demo = apply_overrides(demo_config(), o);
+  ASSERT_TRUE(demo.ok()) << testing::PrintToString(error_lines(demo));
+  EXPECT_EQ(demo.config->http.allowed_hosts,
+            (std::vector<HostPort>{{"lab-pc.local", 0}, {"tunnel", 9000}}));
+
+  o.http_allow_hosts = {"lab pc", "tunnel:0"};
+  EXPECT_THAT(error_lines(apply_overrides(demo_config(), o)),
+              testing::ElementsAre(
+                  "--http-allow-host: \"lab pc\" is not a valid host name or address (expected a "
+                  "host name or address as the browser's address bar gives it, optionally with "
+                  ":PORT, e.g. \"lab-pc\" or \"lab-pc.local:8080\")",
+                  "--http-allow-host: port must be 1..65535, got \"0\" (expected a host name or "
+                  "address as the browser's address bar gives it, optionally with :PORT, e.g. "
+                  "\"lab-pc\" or \"lab-pc.local:8080\")"));
+}
+
 TEST(Overrides, ConflictWithAFileVehicleNamesBothPlaces) {
   const std::string file = R"([mocap]
 source = "sim://"

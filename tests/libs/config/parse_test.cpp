@@ -65,6 +65,7 @@ jump_confirm_frames = 3
 listen = "[::1]:0"
 token = "0123456789abcdef"
 max_connections_per_client = 8
+allowed_hosts = ["Lab-PC", "lab-pc.local:9000", "[fe80::1]", "10.0.0.5"]
 )";
 
 TEST(ParseConfig, GoodFileGivesTypedValues) {
@@ -129,6 +130,9 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(c.http.listen, (HostPort{"::1", 0}));
   EXPECT_EQ(c.http.token, "0123456789abcdef");
   EXPECT_EQ(c.http.max_connections_per_client, 8U);
+  EXPECT_EQ(c.http.allowed_hosts,
+            (std::vector<HostPort>{
+                {"lab-pc", 0}, {"lab-pc.local", 9000}, {"fe80::1", 0}, {"10.0.0.5", 0}}));
 }
 
 TEST(ParseConfig, MinimalFileGetsDocumentedDefaults) {
@@ -163,6 +167,7 @@ profile = "px4"
   EXPECT_EQ(c.http.listen, (HostPort{"127.0.0.1", 8080}));
   EXPECT_EQ(c.http.token, "");
   EXPECT_EQ(c.http.max_connections_per_client, 32U);
+  EXPECT_TRUE(c.http.allowed_hosts.empty());
   ASSERT_EQ(c.vehicles.size(), 1u);
   EXPECT_EQ(c.vehicles[0].spec.rate_hz, 50.0);
   EXPECT_EQ(c.vehicles[0].spec.component_id, 197);
@@ -337,7 +342,7 @@ std::vector<BadCase> bad_cases() {
                 "link = \"udp://127.0.0.1:14540\"\nsystem_id = 1\n"
                 "profile = \"ardupliot\"\n",
        {"t.toml:8:11: vehicle[1].profile: unknown profile \"ardupliot\"; did you mean "
-        "\"ardupilot\"? (one of: px4, ardupilot, px4-gps, ardupilot-gps, classic, custom)"}},
+        "\"ardupilot\"? (one of: px4, ardupilot, px4-gps, ardupilot-gps, classic, custom, auto)"}},
       {"MessagesWithoutCustom",
        kMocap + kVehicle + "messages = [\"odometry\"]\n",
        {"t.toml:9:12: vehicle[1].messages: messages is only allowed with profile = \"custom\"; "
@@ -412,6 +417,18 @@ std::vector<BadCase> bad_cases() {
       {"ConnectionsPerClientRange",
        kMocap + "[http]\nmax_connections_per_client = 0\n",
        {"t.toml:4:30: http.max_connections_per_client: must be an integer from 1 to 256, got 0"}},
+      {"AllowedHostNotAName",
+       kMocap + "[http]\nallowed_hosts = [\"lab-pc\", \"http://lab-pc:8080/\"]\n",
+       {"t.toml:4:17: http.allowed_hosts: expected a host name, not a URL: write \"lab-pc:8080\" "
+        "for \"http://lab-pc:8080/\""}},
+      {"AllowedHostWildcard",
+       kMocap + "[http]\nallowed_hosts = [\"*.local\"]\n",
+       {"t.toml:4:17: http.allowed_hosts: \"*.local\" is not a valid host name or address "
+        "(expected a host name or address as the browser's address bar gives it, optionally with "
+        ":PORT, e.g. \"lab-pc\" or \"lab-pc.local:8080\")"}},
+      {"AllowedHostsNotAList",
+       kMocap + "[http]\nallowed_hosts = \"lab-pc\"\n",
+       {"t.toml:4:17: http.allowed_hosts: expected an array of strings, got a string"}},
       {"ListenWithoutPort",
        kMocap + "[http]\nlisten = \"localhost\"\n",
        {"t.toml:4:10: http.listen: missing port: expected HOST:PORT, got \"localhost\""}},
@@ -502,7 +519,7 @@ listen = "0.0.0.0:8080"
           "lab.toml:4:1: mocap.rate_hz: unknown key here; it belongs in [[vehicle]]",
           "lab.toml:10:13: vehicle[1].system_id: must be an integer from 1 to 255, got 0",
           "lab.toml:11:11: vehicle[1].profile: unknown profile \"px5\"; did you mean \"px4\"? (one "
-          "of: px4, ardupilot, px4-gps, ardupilot-gps, classic, custom)",
+          "of: px4, ardupilot, px4-gps, ardupilot-gps, classic, custom, auto)",
           "lab.toml:12:1: vehicle[1].rate: unknown key; did you mean \"rate_hz\"?",
           "lab.toml:15:8: vehicle[2].name: duplicate vehicle name \"quad1\" (first defined at "
           "lab.toml:7:8)",
@@ -542,12 +559,15 @@ TEST(ParseConfig, SerialLinkTooSlowForTheProfileIsAWarning) {
   ASSERT_TRUE(slow.ok()) << testing::PrintToString(error_lines(slow));
   // MAVLink 2 frames are 12 bytes + payload (common.xml lengths with extensions): ODOMETRY 233 at
   // 50 Hz = 50 × 245; HEARTBEAT 9, TIMESYNC 18 (request and reply) and SET_GPS_GLOBAL_ORIGIN 21 at
-  // 1 Hz = 4 × 12 + 66. 57600 baud at 10 bits a byte carries 5760 bytes/s.
+  // 1 Hz = 4 × 12 + 66; from the vehicle, ATTITUDE and LOCAL_POSITION_NED (28 each) at 5 Hz =
+  // 5 × (2 × 12 + 56), and ESTIMATOR_STATUS (42) at 1 Hz = 54. 57600 baud at 10 bits a byte
+  // carries 5760 bytes/s.
   EXPECT_EQ(warning_lines(slow),
             (std::vector<std::string>{
-                "s.toml:6:8: vehicle[1].link: profile px4 at 50 Hz needs up to 12364 bytes/s but "
-                "57600 baud carries 5760: frames will be dropped; lower rate_hz or raise the baud "
-                "rate"}));
+                "s.toml:6:8: vehicle[1].link: profile px4 at 50 Hz needs up to 12818 bytes/s (with "
+                "the vehicle's ATTITUDE and LOCAL_POSITION_NED at 5 Hz and its estimator status "
+                "at 1 Hz) but 57600 baud carries 5760: frames will be dropped; lower rate_hz or "
+                "raise the baud rate"}));
   const auto fast = parse_config(vehicle("921600"), "f.toml");
   ASSERT_TRUE(fast.ok());
   EXPECT_THAT(fast.warnings, testing::IsEmpty());

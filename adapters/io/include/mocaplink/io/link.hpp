@@ -39,20 +39,20 @@ namespace mocaplink::io {
 ///   down        cannot send now (TCP disconnected, serial device gone); frames are dropped and
 ///               counted while a retry is scheduled
 ///   closed      close() was called; final
-/// The socket / device state. A different idea from core::LinkState (whether the *vehicle* is
-/// heard: a UDP socket is up while nobody answers) and from web::LinkState (the dashboard's
+/// The socket / device state. A different idea from core::HeartbeatState (whether the *vehicle* is
+/// heard: a UDP socket is up while nobody answers) and from web::LinkHealth (the dashboard's
 /// combination of both), so it stays its own type.
-enum class LinkState { connecting, up, down, closed };
+enum class TransportState { connecting, up, down, closed };
 
-[[nodiscard]] constexpr const char* to_string(LinkState state) noexcept {
+[[nodiscard]] constexpr const char* to_string(TransportState state) noexcept {
   switch (state) {
-    case LinkState::connecting:
+    case TransportState::connecting:
       return "connecting";
-    case LinkState::up:
+    case TransportState::up:
       return "up";
-    case LinkState::down:
+    case TransportState::down:
       return "down";
-    case LinkState::closed:
+    case TransportState::closed:
       return "closed";
   }
   return "unknown";
@@ -93,7 +93,7 @@ class Link {
   /// One accepted incoming frame (valid only during the call) and the host time it arrived.
   using FrameHandler = std::function<void(const mavlink::FrameView& frame, core::HostTime t)>;
   /// The link's state changed; `detail` says why (e.g. the OS error text).
-  using StateHandler = std::function<void(LinkState state, const std::string& detail)>;
+  using StateHandler = std::function<void(TransportState state, const std::string& detail)>;
 
   virtual ~Link() = default;
   Link(const Link&) = delete;
@@ -120,7 +120,7 @@ class Link {
   /// The URL the link was made from ("udp://127.0.0.1:14550").
   [[nodiscard]] virtual std::string url() const = 0;
 
-  [[nodiscard]] LinkState state() const noexcept { return state_; }
+  [[nodiscard]] TransportState state() const noexcept { return state_; }
   /// Counters, including a copy of the parser's.
   [[nodiscard]] LinkCounters counters() const noexcept;
   /// The link's signing clock as raised by correctly signed incoming frames (0 without a key):
@@ -140,7 +140,7 @@ class Link {
   /// Expires when the link is destroyed: handlers that may outlive it (name resolution) hold it.
   [[nodiscard]] std::weak_ptr<void> liveness() const { return alive_; }
   /// Changes the state and tells the StateHandler (only when it changes).
-  void set_state(LinkState state, const std::string& detail);
+  void set_state(TransportState state, const std::string& detail);
   void set_handlers(FrameHandler on_frame, StateHandler on_state);
   /// Next back-off delay (retry_min, doubling to retry_max); reset_backoff() after a success.
   [[nodiscard]] std::chrono::milliseconds next_backoff() noexcept;
@@ -155,7 +155,7 @@ class Link {
   mavlink::StreamParser parser_;  // after verifier_: holds a pointer to it
   FrameHandler on_frame_;
   StateHandler on_state_;
-  LinkState state_ = LinkState::connecting;
+  TransportState state_ = TransportState::connecting;
   std::chrono::milliseconds backoff_{0};
 };
 

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +24,8 @@ struct BridgeStatusContext {
   std::optional<core::LatencySummary> bridge_latency{};
   /// Frames the daemon skipped because they reached its loop too late (core::LateFrames).
   std::uint64_t late_frames_skipped = 0;
+  std::uint64_t source_rejected = 0;     ///< packets the source dropped unread, cumulative
+  std::string source_rejected_reason{};  ///< why the latest was dropped, "" if none or unsaid
 };
 
 /// "quadrotor", "ground_rover", ... (MAV_TYPE), or the number when not in our table.
@@ -36,25 +37,25 @@ struct BridgeStatusContext {
 [[nodiscard]] std::string flight_mode_name(std::uint8_t autopilot, std::uint8_t type,
                                            std::uint32_t custom_mode);
 
-/// Builds StatusViews from successive Bridge snapshots, measuring each vehicle's actual pose
-/// send rate from its counters (pose frames per second over the last ≥ 1 s). Not thread-safe:
-/// call it from the thread that owns the Bridge (the daemon's event loop).
+/// Fills `v`'s autopilot, origin advice, setup, statustext, estimator and delay_ms from the
+/// vehicle's set-up snapshot (core::VehicleSetup), as GET /api/status does; `mocaplink vehicle
+/// setup --json` prints the same fields.
+void fill_setup_view(const core::VehicleStatus& in, core::HostTime now, VehicleView& v);
+
+/// Builds StatusViews from Bridge snapshots. Every rate in them is the core's, measured over a
+/// fixed window ending at the snapshot's time (frame_rate_hz: station.hpp; send_rate_hz:
+/// sender.hpp), so a view does not depend on earlier calls. Not thread-safe: call it from the
+/// thread that owns the Bridge (the daemon's event loop).
 class BridgeStatusBuilder {
  public:
   /// `started` is the host time the daemon started (uptime_s counts from it).
   explicit BridgeStatusBuilder(core::HostTime started);
 
   [[nodiscard]] StatusView build(const core::BridgeSnapshot& snapshot,
-                                 const BridgeStatusContext& context);
+                                 const BridgeStatusContext& context) const;
 
  private:
-  struct RateWindow {
-    core::HostTime time{};
-    std::uint64_t poses = 0;
-    double rate_hz = 0.0;
-  };
   core::HostTime started_;
-  std::map<std::string, RateWindow, std::less<>> rates_;  // by vehicle name
 };
 
 }  // namespace mocaplink::web

@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "mocaplink/config/net_address.hpp"
 #include "mocaplink/web/dashboard_backend.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 
@@ -21,6 +23,13 @@ struct DashboardServerConfig {
   /// "" = no authentication, allowed only on loopback hosts. Otherwise every /api/ request needs
   /// "Authorization: Bearer <token>".
   std::string token{};
+  /// Names (lower case) besides localhost, 127.0.0.0/8 and [::1] that a request's Host may give
+  /// (port 0: without a port or with the listening one; otherwise exactly that port). Without a
+  /// token every request, page files included, must name one of these or a loopback host, or it
+  /// is answered 403 (DNS rebinding, http_auth.hpp host_allowed). With a token the Host is checked
+  /// only when this list is not empty: the token is the protection, and a server on 0.0.0.0 is
+  /// reached by addresses it cannot know.
+  std::vector<config::HostPort> allowed_hosts{};
   std::chrono::milliseconds event_period{100};  ///< /api/events period (about 10 updates/s), > 0
   std::size_t max_event_clients = 8;            ///< concurrent /api/events streams; more get 503
   /// Connections served at once, one thread each (idle ones cost no CPU); more wait for one.

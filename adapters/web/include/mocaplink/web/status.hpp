@@ -66,18 +66,22 @@ struct StationView {
   /// Frames the bridge reached more than 250 ms after they arrived, skipped rather than sent
   /// (core::LateFrames; an overloaded machine), cumulative.
   std::uint64_t late_frames_skipped = 0;
+  /// Packets the source dropped unread (malformed, or from another sender than configured),
+  /// cumulative, and why the latest was ("" if none, or the source does not say).
+  std::uint64_t rejected = 0;
+  std::string rejected_reason{};
 };
 
 /// How the bridge hears from a vehicle over its link, as the dashboard shows it (docs/api.md
 /// `link.state`). Not a copy of a core type: it combines two owners' states — the vehicle's
-/// heartbeat state (core::LinkState waiting / alive / silent: alive → up, otherwise silent) and
-/// the socket's (io::LinkState down or closed → down), which the core cannot know.
-enum class LinkState {
+/// heartbeat state (core::HeartbeatState waiting / alive / silent: alive → up, otherwise silent)
+/// and the socket's (io::TransportState down or closed → down), which the core cannot know.
+enum class LinkHealth {
   up,      ///< a message arrived within the last few seconds (the daemon's silence timeout)
   silent,  ///< sending, but nothing heard back (yet, or for longer than the timeout)
   down,    ///< the link cannot send (serial port gone, TCP disconnected, socket error)
 };
-[[nodiscard]] std::string_view to_string(LinkState state);
+[[nodiscard]] std::string_view to_string(LinkHealth state);
 
 /// TIMESYNC with the vehicle (the vehicle's boot clock estimate).
 enum class TimesyncState {
@@ -114,6 +118,61 @@ struct AgreementView {
   AgreementVerdict verdict = AgreementVerdict::unknown;
   std::optional<double> yaw_offset_deg{};  ///< vehicle yaw − mocap yaw, wrapped to (−180, 180]
   std::optional<double> position_offset_m{};  ///< |vehicle position − mocap position|, NED
+  /// While the verdict is unknown: why, one sentence ("no ATTITUDE from the vehicle after
+  /// asking: is this port's MAVLink enabled?"); null once there is a verdict.
+  std::optional<std::string> reason{};
+};
+
+/// The vehicle's autopilot (core::VehicleSetup): "px4", "ardupilot", "other" or "unknown", and
+/// its firmware version from AUTOPILOT_VERSION ("1.14.3"; null until it answers).
+struct AutopilotView {
+  std::string name = "unknown";
+  std::optional<std::string> version{};
+  std::string profile_in_effect{};  ///< the profile whose set-up rules apply
+};
+
+/// One line of the set-up check list (docs/api.md `setup.items`).
+struct SetupItemView {
+  std::string parameter{};  ///< "EKF2_EV_CTRL", or "profile"
+  std::optional<double> current{};
+  std::string needed{};    ///< as the operator reads it ("15 (horizontal ...)")
+  std::string severity{};  ///< blocks | degrades | advice
+  std::string status{};    ///< ok | wrong | missing | unread | unmeasured
+  std::string why{};
+  std::optional<double> fix{};  ///< what Apply writes (wrong items with a fix only)
+  bool reboot = false;          ///< takes effect after a reboot
+  std::string apply = "none";   ///< none | pending | confirmed | failed
+  std::string apply_note{};
+};
+
+struct SetupView {
+  /// waiting | identifying | reading | ready | blocked | no answer | unsupported
+  std::string state = "waiting";
+  std::vector<SetupItemView> items{};
+  std::vector<std::string> reboot_for{};  ///< confirmed changes waiting for a reboot
+  std::string last_refusal{};
+};
+
+struct StatusTextView {
+  std::string severity{};  ///< emergency ... debug
+  std::string text{};
+  double age_s = 0.0;
+};
+
+struct EstimatorView {
+  std::string source{};  ///< EKF_STATUS_REPORT | ESTIMATOR_STATUS
+  std::vector<std::string> good{};
+  std::vector<std::string> problems{};
+  double age_s = 0.0;
+};
+
+/// The delay recommendation (docs/api.md `delay_ms`).
+struct DelayView {
+  std::optional<double> measured{};
+  std::optional<double> recommended{};
+  std::string parameter{};
+  std::optional<double> current{};
+  std::string basis{};
 };
 
 /// One vehicle: its Sender (what we send) and its VehicleState (what it tells us).
@@ -129,16 +188,28 @@ struct VehicleView {
   std::vector<std::string> available_messages{};
   double rate_hz = 0.0;  ///< configured pose rate, 0 < rate ≤ 500
   bool paused = false;   ///< true: no pose messages are sent (heartbeat continues)
-  LinkState link_state = LinkState::silent;
+  LinkHealth link_state = LinkHealth::silent;
   std::optional<double> last_heard_s{};  ///< seconds since anything arrived from the vehicle
   std::uint64_t sent_total = 0;          ///< every MAVLink frame sent to it, cumulative
   /// Frames sent per message name (MAVLink names, "ODOMETRY", "HEARTBEAT", ...), cumulative.
   std::map<std::string, std::uint64_t> sent{};
-  double send_rate_hz = 0.0;  ///< measured pose messages per second over the last second
+  /// Due pose sends per second (one per rate_hz slot, whatever messages it holds) over the last
+  /// second, measured by the core (core::SenderSnapshot::send_rate_hz), comparable with rate_hz.
+  double send_rate_hz = 0.0;
   std::optional<HeartbeatView> heartbeat{};  ///< null until the vehicle's first HEARTBEAT
   TimesyncView timesync{};
   OriginState origin = OriginState::not_needed;
   AgreementView agreement{};
+  /// What the agreement check asked of the vehicle, per message it needs ("ATTITUDE",
+  /// "LOCAL_POSITION_NED") → core::StreamState's spelling ("idle", "asking", "arriving", ...).
+  std::map<std::string, std::string> streams{};
+  /// Why the origin was never confirmed, once it is given up (origin state "unconfirmed").
+  std::optional<std::string> origin_advice{};
+  AutopilotView autopilot{};
+  SetupView setup{};
+  std::vector<StatusTextView> statustext{};  ///< the vehicle's last few, oldest first
+  std::optional<EstimatorView> estimator{};
+  DelayView delay_ms{};
 };
 
 enum class AlertLevel { warning, error };
@@ -162,6 +233,9 @@ struct ConnectionsView {
   std::uint64_t refused = 0;
   /// Requests answered 408: not complete within the request deadline, cumulative.
   std::uint64_t timed_out = 0;
+  /// Requests answered 403 because their Host is not a name of this dashboard (DNS rebinding,
+  /// DashboardServerConfig::allowed_hosts), cumulative.
+  std::uint64_t host_refused = 0;
 };
 
 /// Everything GET /api/status returns.

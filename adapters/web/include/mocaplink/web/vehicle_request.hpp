@@ -61,11 +61,21 @@ struct UpdateVehicle {
   std::vector<config::VehicleKey> keys{};  ///< rate_hz and/or messages (config::update_vehicle)
   std::optional<bool> paused{};
 };
+/// POST /api/vehicles/NAME/setup: write the fixes of the named parameters of its set-up list, or
+/// reboot the vehicle (one of the two per request).
+struct SetupVehicle {
+  std::string name{};                ///< from the URL
+  std::vector<std::string> apply{};  ///< parameter names as the list shows them
+  bool reboot = false;
+};
 /// One change the dashboard asks the daemon to make.
-using VehicleChange = std::variant<AddVehicle, RemoveVehicle, UpdateVehicle>;
+using VehicleChange = std::variant<AddVehicle, RemoveVehicle, UpdateVehicle, SetupVehicle>;
 
 /// Parses a POST body (JSON text of any length; the server caps it at 64 KiB).
 ApiResult<AddVehicle> parse_vehicle_spec(std::string_view json_text);
+/// Parses a POST /api/vehicles/NAME/setup body: {"apply": ["PARAM", ...]} (1 to 32 names of at
+/// most 16 characters: A-Z, 0-9, _) or {"reboot": true}.
+ApiResult<SetupVehicle> parse_vehicle_setup(std::string_view json_text, std::string name);
 /// Parses a PATCH body for the vehicle `name` (taken from the URL). An empty object is refused:
 /// a PATCH must change something.
 ApiResult<UpdateVehicle> parse_vehicle_patch(std::string_view json_text, std::string name);

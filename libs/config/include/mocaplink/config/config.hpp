@@ -51,6 +51,11 @@ struct Vehicle {
 struct HttpSettings {
   HostPort listen{"127.0.0.1", 8080};  ///< port 0 = any free port (tests)
   std::string token;  ///< "" or ≥ 16 characters; required when listen is not loopback
+  /// Names besides localhost, 127.0.0.0/8 and [::1] by which the dashboard may be opened (the
+  /// request's Host): "lab-pc" (lower case) with port 0 = without a port or with listen's, or
+  /// "lab-pc:9000" = exactly that port. Without a token every other Host is refused (DNS
+  /// rebinding); with a token the Host is checked only when this is not empty (docs/api.md).
+  std::vector<HostPort> allowed_hosts;
   /// Dashboard connections one client address may hold at once, 1..256 (the server's total).
   std::uint32_t max_connections_per_client = 32;
 };

@@ -29,6 +29,8 @@ struct [[nodiscard]] ConfigResult {
 struct CommandLineOverrides {
   std::optional<std::string> source;  ///< --source URL: replaces [mocap] source
   std::optional<std::string> http;    ///< --http ADDR: replaces [http] listen
+  /// --http-allow-host NAME, each added to [http] allowed_hosts ("NAME" or "NAME:PORT").
+  std::vector<std::string> http_allow_hosts;
   /// --vehicle SPEC, in command-line order: "NAME:key=value,key=value,...". Keys are those of
   /// [[vehicle]] except name; `messages` joins its entries with '+' ("odometry+hil_gps"); values
   /// cannot contain ','. An existing NAME has the given keys replaced; a new NAME is added and
