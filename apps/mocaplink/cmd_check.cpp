@@ -49,8 +49,24 @@ void print_summary(const config::Config& cfg) {
                 std::string(core::to_string(v.spec.profile)).c_str(), v.spec.rate_hz,
                 v.spec.signing_key ? ", signed" : "", v.spec.enabled ? "" : ", disabled");
   }
-  std::printf("  dashboard: http://%s%s\n", config::to_string(cfg.http.listen).c_str(),
-              cfg.http.token.empty() ? "" : " (token required)");
+  // The vision profiles send the same ODOMETRY; auto also checks the set-up by the rules of the
+  // autopilot the vehicle turns out to run (docs/setup.md).
+  for (const auto& v : cfg.vehicles) {
+    if (v.spec.profile != core::Profile::px4 && v.spec.profile != core::Profile::ardupilot)
+      continue;
+    std::printf(
+        "  hint: %s: profile = \"auto\" sends the same and checks the vehicle's set-up by "
+        "whichever autopilot it runs\n",
+        v.spec.name.c_str());
+  }
+  std::string names;
+  for (const auto& host : cfg.http.allowed_hosts) {
+    names += (names.empty() ? ", also opened as " : ", ") +
+             (host.port == 0 ? config::to_string(config::HostPort{host.host, cfg.http.listen.port})
+                             : config::to_string(host));
+  }
+  std::printf("  dashboard: http://%s%s%s\n", config::to_string(cfg.http.listen).c_str(),
+              cfg.http.token.empty() ? "" : " (token required)", names.c_str());
 }
 
 int run_check(const std::string& path, const sources::SourceRegistry& sources) {

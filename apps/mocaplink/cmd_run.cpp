@@ -1,5 +1,6 @@
-// `mocaplink run [--config FILE] [--source URL] [--vehicle SPEC]... [--http ADDR] [--record DIR]`
-// (DESIGN.md "Command line"; behaviour, logs and exit codes in docs/daemon.md). Neither --config,
+// `mocaplink run [--config FILE] [--source URL] [--vehicle SPEC]... [--http ADDR]
+// [--http-allow-host NAME]... [--record DIR]` (DESIGN.md "Command line"; behaviour, logs and exit
+// codes in docs/daemon.md). Neither --config,
 // --source nor --vehicle: the demo (simulated source, one vehicle at udp://127.0.0.1:14550).
 #include <cstdio>
 #include <cstdlib>
@@ -122,6 +123,10 @@ void add_run_commands(CLI::App& app, ExitCode& exit_code, const sources::SourceR
                   "(e.g. quad1:body=Quad1,link=udp://127.0.0.1:14540,profile=px4)")
       ->allow_extra_args(false);
   run->add_option("--http", options->http, "Dashboard address HOST:PORT, replacing [http] listen");
+  run->add_option("--http-allow-host", options->http_allow_hosts,
+                  "A name (NAME or NAME:PORT) besides localhost and 127.0.0.1 by which the "
+                  "dashboard may be opened, added to [http] allowed_hosts; repeatable")
+      ->allow_extra_args(false);
   run->add_option("--record", options->record_dir,
                   "Record mocap frames (DIR/mocap.csv) and MAVLink traffic (DIR/<vehicle>.tlog)");
   run->callback(

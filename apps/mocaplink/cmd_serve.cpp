@@ -16,16 +16,22 @@
 //                       those, refused by the others: nothing is sent that was not asked for)
 // --set KEY=VALUE       a setting of the protocol's emulator (docs/sources.md lists them per
 //                       protocol); repeatable, each key once
+// --stall AT_S:FOR_MS   a network stall, for tests of what a client does with late frames: the
+//                       frames of FOR_MS from AT_S seconds after start are held back, then
+//                       published at once with the first frame after it (a burst, as a TCP
+//                       connection delivers its backlog); every protocol
 // On start one line goes to stdout: "serving P on HOST:PORT from SOURCE at RATE Hz" (PORT is
 // the bound one, so --listen 127.0.0.1:0 works for scripts; "to HOST:PORT" for a protocol that
 // sends to --to). Runs until SIGINT/SIGTERM (exit 0).
 // Exit 1: bad arguments; exit 2: cannot listen or cannot read the recording.
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -48,6 +54,61 @@ struct ServeArgs {
   double rate_hz = 100.0;
   std::optional<std::string> to;
   std::vector<std::string> settings;
+  std::optional<std::string> stall;
+};
+
+/// --stall AT_S:FOR_MS (see the file comment).
+struct Stall {
+  std::chrono::nanoseconds at{};
+  std::chrono::nanoseconds length{};
+};
+
+/// "AT_S:FOR_MS" with 0 ≤ AT_S ≤ 3600 and 0 < FOR_MS ≤ 60000; nullopt otherwise.
+std::optional<Stall> parse_stall(const std::string& text) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  const auto number = [](std::string_view part) -> std::optional<double> {
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (part.empty() || ec != std::errc{} || end != part.data() + part.size()) return std::nullopt;
+    return value;
+  };
+  const auto at = number(std::string_view(text).substr(0, colon));
+  const auto length = number(std::string_view(text).substr(colon + 1));
+  if (!at || !length || !(*at >= 0.0 && *at <= 3600.0) || !(*length > 0.0 && *length <= 60000.0)) {
+    return std::nullopt;
+  }
+  return Stall{
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(*at)),
+      std::chrono::duration_cast<std::chrono::nanoseconds>(
+          std::chrono::duration<double, std::milli>(*length))};
+}
+
+/// Holds the frames published during a Stall and lets them out in one burst after it. Called on
+/// the source's thread only.
+class StallingPublisher {
+ public:
+  StallingPublisher(sources::Emulator& server, std::optional<Stall> stall)
+      : server_(server), stall_(stall) {}
+
+  void publish(core::MocapFrame frame) {
+    if (stall_) {
+      const auto elapsed = std::chrono::steady_clock::now() - start_;
+      if (elapsed >= stall_->at && elapsed < stall_->at + stall_->length) {
+        held_.push_back(std::move(frame));
+        return;
+      }
+      for (auto& held : held_) server_.publish(std::move(held));
+      held_.clear();
+    }
+    server_.publish(std::move(frame));
+  }
+
+ private:
+  sources::Emulator& server_;
+  std::optional<Stall> stall_;
+  std::vector<core::MocapFrame> held_;
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 // `--from sim` and `replay:FILE` are shorthands for sim:// and replay://FILE.
@@ -181,6 +242,14 @@ int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
                  args.listen.value_or("").c_str());
     return 1;
   }
+  const std::optional<Stall> stall = args.stall ? parse_stall(*args.stall) : std::nullopt;
+  if (args.stall && !stall) {
+    std::fprintf(stderr,
+                 "mocaplink serve: bad --stall '%s' (expected AT_S:FOR_MS, 0 <= AT_S <= 3600, "
+                 "0 < FOR_MS <= 60000)\n",
+                 args.stall->c_str());
+    return 1;
+  }
 
   sources::EmulatorOptions emulator_options;
   emulator_options.listen_host = listen->first;
@@ -221,11 +290,13 @@ int run_serve(const ServeArgs& args, const sources::SourceRegistry& sources) {
     return 2;
   }
   const std::string scheme = url.substr(0, url.find(':'));
-  source->start([&server](core::MocapFrame f, core::HostTime) { server->publish(std::move(f)); },
-                [&scheme](sources::SourceState s, const std::string& detail) {
-                  std::fprintf(stderr, "mocaplink serve: %s %s%s%s\n", scheme.c_str(), to_string(s),
-                               detail.empty() ? "" : ": ", detail.c_str());
-                });
+  StallingPublisher publisher(*server, stall);
+  source->start(
+      [&publisher](core::MocapFrame f, core::HostTime) { publisher.publish(std::move(f)); },
+      [&scheme](sources::SourceState s, const std::string& detail) {
+        std::fprintf(stderr, "mocaplink serve: %s %s%s%s\n", scheme.c_str(), to_string(s),
+                     detail.empty() ? "" : ": ", detail.c_str());
+      });
   if (protocol->emulator_sends) {
     std::printf("serving %s to %s:%u from %s at %g Hz\n", args.protocol.c_str(),
                 emulator_options.to_host.c_str(), static_cast<unsigned>(emulator_options.to_port),
@@ -263,6 +334,9 @@ void add_serve_commands(CLI::App& app, ExitCode& exit_code,
       "HOST:PORT to send to, for protocols that send unasked (" + senders(sources) + ")");
   serve->add_option("--set", args->settings,
                     "KEY=VALUE setting of the protocol's emulator (repeatable; docs/sources.md)");
+  serve->add_option("--stall", args->stall,
+                    "AT_S:FOR_MS: hold the frames of FOR_MS from AT_S s after start back, then "
+                    "send them at once (a network stall and its backlog, for tests)");
   serve->callback([args, &exit_code, &sources] { exit_code.value = run_serve(*args, sources); });
 }
 

@@ -4,6 +4,10 @@
 // Exit codes (commands.hpp): 0 at least one frame arrived; 1 bad command line or source URL
 // (nothing started); 2 no frame ever arrived (source unreachable, silent or empty) or the
 // recording could not be written.
+//
+// Packets the source dropped unread (SourceCounters::rejected(): malformed or from a stranger)
+// are shown with the latest reason in both commands, so a stream the source cannot read is never
+// just "no frame arrived".
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -32,6 +36,18 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using sources::SourceState;
+
+/// Packets a source dropped unread (malformed or refused) and the latest reason.
+struct Rejections {
+  std::uint64_t count = 0;
+  std::string reason;
+  /// "; 12 packets rejected: REASON" or "" when none (the no-frame and record lines).
+  [[nodiscard]] std::string suffix() const {
+    if (count == 0) return {};
+    return fmt::format("; {} {} rejected{}", count, count == 1 ? "packet" : "packets",
+                       reason.empty() ? std::string() : ": " + reason);
+  }
+};
 
 /// A started Source feeding a Station, thread-safe: the source's thread calls in, the main thread
 /// waits (on its own event loop, which also takes SIGINT/SIGTERM) and takes snapshots. `also` sees
@@ -101,6 +117,13 @@ class StationSession {
     const std::lock_guard lock(mutex_);
     return {state_, detail_};
   }
+  /// Packets the source dropped unread, and why the latest was (any thread).
+  [[nodiscard]] Rejections rejections() const {
+    const auto& c = source_->counters();
+    // The reason first: a source sets it before it counts.
+    std::string reason = c.last_rejection.get();
+    return {c.rejected(), std::move(reason)};
+  }
   void stop() { source_->stop(); }
 
  private:
@@ -130,7 +153,8 @@ std::unique_ptr<sources::Source> open_source(const sources::SourceRegistry& sour
   return std::move(std::get<std::unique_ptr<sources::Source>>(made));
 }
 
-nlohmann::json to_json(const std::string& url, SourceState state, const core::StationSnapshot& s) {
+nlohmann::json to_json(const std::string& url, SourceState state, const core::StationSnapshot& s,
+                       const Rejections& rejected) {
   const auto optional_number = [](const std::optional<double>& v) {
     return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
   };
@@ -155,6 +179,9 @@ nlohmann::json to_json(const std::string& url, SourceState state, const core::St
           {"jitter_ms", optional_number(s.jitter_ms)},
           {"frames", s.frames},
           {"dropped", s.drops_counted ? nlohmann::json(s.dropped) : nlohmann::json(nullptr)},
+          {"rejected", rejected.count},
+          {"rejected_reason",
+           rejected.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(rejected.reason)},
           {"bodies", std::move(bodies)}};
 }
 
@@ -163,7 +190,7 @@ std::string optional_ms(const std::optional<double>& v) {
 }
 
 std::string to_text(const std::string& url, SourceState state, const std::string& detail,
-                    const core::StationSnapshot& s) {
+                    const core::StationSnapshot& s, const Rejections& rejected) {
   std::string out = fmt::format("source    {}\nstate     {}{}\n", url, sources::to_string(state),
                                 detail.empty() ? "" : " (" + detail + ")");
   out += fmt::format("rate      {:.1f} Hz{}\n", s.frame_rate_hz,
@@ -176,6 +203,10 @@ std::string to_text(const std::string& url, SourceState state, const std::string
                            s.restarts)
              : fmt::format("frames    {}   dropped n/a (no frame numbers from the source)\n",
                            s.frames);
+  if (rejected.count > 0) {
+    out += fmt::format("rejected  {}{}\n", rejected.count,
+                       rejected.reason.empty() ? std::string() : "   last: " + rejected.reason);
+  }
   out += fmt::format("{:<16} {:<7} {:>9} {:>9} {:>9} {:>9}  {:>7} {:>7} {:>7} {:>7}\n", "body",
                      "tracked", "frames", "x_m", "y_m", "z_m", "qw", "qx", "qy", "qz");
   for (const auto& b : s.bodies) {
@@ -200,7 +231,7 @@ void run_bodies(const sources::SourceRegistry& sources, const std::string& url,
   const bool terminal = io::stdout_is_ansi_terminal();
   const auto show = [&] {
     const auto [state, detail] = session.state();
-    const std::string text = to_text(url, state, detail, session.snapshot());
+    const std::string text = to_text(url, state, detail, session.snapshot(), session.rejections());
     // On a terminal, redraw in place (home + clear); piped, print blocks one after another.
     std::fputs(terminal ? ("\x1b[H\x1b[2J" + text).c_str() : (text + "\n").c_str(), stdout);
     std::fflush(stdout);
@@ -211,14 +242,15 @@ void run_bodies(const sources::SourceRegistry& sources, const std::string& url,
   const auto snapshot = session.snapshot();
   const auto [state, detail] = session.state();
   session.stop();
+  const auto rejected = session.rejections();
   if (json) {
-    std::puts(to_json(url, state, snapshot).dump().c_str());
+    std::puts(to_json(url, state, snapshot, rejected).dump().c_str());
   } else {
-    std::fputs(to_text(url, state, detail, snapshot).c_str(), stdout);
+    std::fputs(to_text(url, state, detail, snapshot, rejected).c_str(), stdout);
   }
   if (snapshot.frames == 0) {
-    std::fprintf(stderr, "mocaplink bodies: no frame arrived from %s%s\n", url.c_str(),
-                 detail.empty() ? "" : (" (" + detail + ")").c_str());
+    std::fprintf(stderr, "mocaplink bodies: no frame arrived from %s%s%s\n", url.c_str(),
+                 detail.empty() ? "" : (" (" + detail + ")").c_str(), rejected.suffix().c_str());
     exit_code.value = 2;
   }
 }
@@ -259,12 +291,13 @@ void run_record(const sources::SourceRegistry& sources, const std::string& url,
   }
   const std::string dropped =
       snapshot.drops_counted ? std::to_string(snapshot.dropped) : std::string("n/a");
-  std::fprintf(stderr, "mocaplink record: %llu frames (%s dropped, %zu bodies) to %s\n",
+  const auto rejected = session.rejections();
+  std::fprintf(stderr, "mocaplink record: %llu frames (%s dropped, %zu bodies) to %s%s\n",
                static_cast<unsigned long long>(snapshot.frames), dropped.c_str(),
-               snapshot.bodies.size(), out_path.c_str());
+               snapshot.bodies.size(), out_path.c_str(), rejected.suffix().c_str());
   if (snapshot.frames == 0) {
-    std::fprintf(stderr, "mocaplink record: no frame arrived from %s%s\n", url.c_str(),
-                 detail.empty() ? "" : (" (" + detail + ")").c_str());
+    std::fprintf(stderr, "mocaplink record: no frame arrived from %s%s%s\n", url.c_str(),
+                 detail.empty() ? "" : (" (" + detail + ")").c_str(), rejected.suffix().c_str());
     exit_code.value = 2;
   }
 }

@@ -1,6 +1,7 @@
 // Subcommand families of the `mocaplink` binary. Each add_* registers its subcommands on the app;
 // the callbacks run the command and set the process exit code through the returned reference.
-// Exit codes: 0 success, 1 bad input or config (nothing sent), 2 runtime failure (I/O).
+// Exit codes: 0 success, 1 bad input or config (nothing sent), 2 runtime failure (I/O); `vehicle
+// setup` adds 3: the vehicle's set-up blocks.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -26,6 +27,9 @@ void add_serve_commands(CLI::App& app, ExitCode& exit_code, const sources::Sourc
 /// `check` (cmd_check.cpp).
 void add_config_commands(CLI::App& app, ExitCode& exit_code,
                          const sources::SourceRegistry& sources);
+/// `vehicle setup` (cmd_vehicle.cpp).
+void add_vehicle_commands(CLI::App& app, ExitCode& exit_code,
+                          const sources::SourceRegistry& sources);
 /// `run` (cmd_run.cpp).
 void add_run_commands(CLI::App& app, ExitCode& exit_code, const sources::SourceRegistry& sources);
 

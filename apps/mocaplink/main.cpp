@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   mocaplink::app::add_station_commands(app, exit_code, sources);
   mocaplink::app::add_serve_commands(app, exit_code, sources);
   mocaplink::app::add_mavlink_commands(app, exit_code);
+  mocaplink::app::add_vehicle_commands(app, exit_code, sources);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

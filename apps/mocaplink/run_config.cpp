@@ -25,6 +25,7 @@ std::optional<config::Config> load_run_config(const RunOptions& options,
   config::CommandLineOverrides overrides;
   overrides.source = options.source;
   overrides.http = options.http;
+  overrides.http_allow_hosts = options.http_allow_hosts;
   overrides.vehicles = options.vehicles;
   config::ConfigResult result;
   std::string name = "built-in demo";

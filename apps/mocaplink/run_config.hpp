@@ -20,7 +20,8 @@ struct RunOptions {
   std::optional<std::string> source;  ///< --source URL
   std::vector<std::string> vehicles;  ///< --vehicle SPEC, in order
   std::optional<std::string> http;    ///< --http ADDR
-  std::optional<std::string> record_dir;  ///< --record DIR
+  std::vector<std::string> http_allow_hosts;  ///< --http-allow-host NAME, in order
+  std::optional<std::string> record_dir;      ///< --record DIR
 };
 
 /// Reads the file (if any) and applies the overrides. The built-in demo is the base only when

@@ -105,6 +105,7 @@ class Daemon {
                                            bool paused);
   std::optional<web::ApiError> remove_vehicle(const std::string& name);
   std::optional<web::ApiError> update_vehicle(const web::UpdateVehicle& update);
+  std::optional<web::ApiError> setup_vehicle(const web::SetupVehicle& setup);
   void destroy_retired(core::HostTime now);
   void start_source();
   void drain();
@@ -112,6 +113,9 @@ class Daemon {
   /// (core::LateFrames::warning). Called from the tick: within kTickPeriod of the first skip, and
   /// nothing added to the per-frame path.
   void warn_late_frames(core::HostTime now);
+  /// Logs the packets the source dropped unread (SourceCounters::rejected) when their count
+  /// reaches 1, 10, 100, ... (a summary, not a line per packet), with the latest reason.
+  void log_rejections();
   void on_frame(const core::MocapFrame& frame, core::HostTime received);
   void dispatch(const core::BridgeOutput& out);
   /// Sends messages[first, end) (one vehicle's run) to that vehicle's link, in batches.
@@ -154,7 +158,8 @@ class Daemon {
   std::string source_error_;            // the source's last problem, "" when connected (dashboard)
   core::LatencyWindow bridge_latency_;  // frame received → its last datagram sent (dashboard)
   core::LateFrames late_frames_;        // frames that waited too long to be sent (drain)
-  core::BridgeOutput frame_output_;     // per frame, kept for its capacity
+  std::uint64_t next_rejection_log_ = 1;  // the source's rejected count logged next (1, 10, ...)
+  core::BridgeOutput frame_output_;       // per frame, kept for its capacity
   Summary summary_;
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
@@ -213,8 +218,8 @@ void Daemon::start_link(std::size_t slot) {
           on_vehicle_frame(slot, frame, t);
         }
       },
-      [name = bridge_.vehicle(slot)->name](io::LinkState state, const std::string& detail) {
-        if (state == io::LinkState::down) {
+      [name = bridge_.vehicle(slot)->name](io::TransportState state, const std::string& detail) {
+        if (state == io::TransportState::down) {
           spdlog::warn("vehicle {}: link {}: {}", name, io::to_string(state), detail);
         } else {
           spdlog::info("vehicle {}: link {}: {}", name, io::to_string(state), detail);
@@ -261,7 +266,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   }
   config_ = std::move(*checked.config);
   spdlog::info("dashboard: vehicle {} added{}", vehicle.spec.name, paused ? " (paused)" : "");
-  summary_.describe_vehicle(vehicle, *vehicles_[slot].link);
+  summary_.describe_vehicle(vehicle, *vehicles_[slot].link, io::host_now());
   return std::nullopt;
 }
 
@@ -334,9 +339,29 @@ std::optional<web::ApiError> Daemon::update_vehicle(const web::UpdateVehicle& up
   return std::nullopt;
 }
 
+std::optional<web::ApiError> Daemon::setup_vehicle(const web::SetupVehicle& setup) {
+  const auto slot = bridge_.find_vehicle(setup.name);
+  if (!slot) return web::ApiError{404, "no vehicle named \"" + setup.name + "\"", ""};
+  const core::HostTime now = io::host_now();
+  core::SetupRequestResult result;
+  if (setup.reboot) {
+    core::BridgeOutput out;
+    result = bridge_.reboot_vehicle(*slot, now, out);
+    dispatch(out);
+  } else {
+    result = bridge_.apply_setup(*slot, setup.apply, now);
+  }
+  if (!result.accepted) {
+    spdlog::warn("dashboard: vehicle {}: set-up request refused: {}", setup.name, result.message);
+    return web::ApiError{409, result.message, setup.reboot ? "reboot" : "apply"};
+  }
+  spdlog::info("dashboard: vehicle {}: {}", setup.name, result.message);
+  return std::nullopt;
+}
+
 void Daemon::destroy_retired(core::HostTime now) {
   for (auto it = retired_.begin(); it != retired_.end();) {
-    if (it->link->state() != io::LinkState::closed || now - it->closed < kRetireAfter) {
+    if (it->link->state() != io::TransportState::closed || now - it->closed < kRetireAfter) {
       ++it;
       continue;
     }
@@ -380,8 +405,10 @@ void Daemon::drain() {
   batch_.clear();
   queue_.drain(batch_);
   for (auto& item : batch_) {
-    // Too old to send (core/late_frames.hpp): the loop is behind; go on with fresher frames.
-    const bool late = late_frames_.skip_if_late(item.received, io::host_now());
+    // Too old to send (core/late_frames.hpp): the loop is behind, or the source delivered it late;
+    // go on with fresher frames. Its age is judged now, right before its poses would be sent.
+    const bool late =
+        late_frames_.skip_if_late(bridge_.frame_age(item.frame, item.received, io::host_now()));
     if (!late) {
       on_frame(item.frame, item.received);
       bridge_latency_.add(io::host_now() - item.received);
@@ -393,14 +420,24 @@ void Daemon::drain() {
   summary_.on_frames(batch_.size());
 }
 
+void Daemon::log_rejections() {
+  const auto& counters = source_->counters();
+  std::string reason = counters.last_rejection.get();  // before the count: a source sets it first
+  const std::uint64_t rejected = counters.rejected();
+  if (rejected < next_rejection_log_) return;
+  while (next_rejection_log_ <= rejected) next_rejection_log_ *= 10;
+  spdlog::warn("source {}: {} packet{} rejected{}{}", source_->url(), rejected,
+               rejected == 1 ? "" : "s", reason.empty() ? "" : ": ", reason);
+}
+
 void Daemon::warn_late_frames(core::HostTime now) {
   const auto late = late_frames_.warning(now);
   if (!late) return;
   spdlog::warn(
-      "the bridge is behind the source: {} frame{} skipped, having waited up to {:.0f} ms "
-      "(more than {} ms is too old to send; is the machine overloaded?)",
+      "{} frame{} skipped as too old to send, up to {:.0f} ms since capture (more than {} ms is "
+      "too old: is the machine overloaded, or did the source deliver them late?)",
       late->skipped, late->skipped == 1 ? "" : "s",
-      std::chrono::duration<double, std::milli>(late->longest_wait).count(),
+      std::chrono::duration<double, std::milli>(late->oldest).count(),
       std::chrono::duration_cast<std::chrono::milliseconds>(core::kMaxFrameWait).count());
 }
 
@@ -566,12 +603,14 @@ int Daemon::run() {
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
       loop_,
-      DashboardAccess{bridge_, config_, vehicles_, source_error_, bridge_latency_, late_frames_,
+      DashboardAccess{bridge_, config_, vehicles_, source_error_, source_->counters(),
+                      bridge_latency_, late_frames_,
                       [this](const std::vector<config::VehicleKey>& keys, bool paused) {
                         return add_vehicle(keys, paused);
                       },
                       [this](const std::string& name) { return remove_vehicle(name); },
-                      [this](const web::UpdateVehicle& update) { return update_vehicle(update); }});
+                      [this](const web::UpdateVehicle& update) { return update_vehicle(update); },
+                      [this](const web::SetupVehicle& setup) { return setup_vehicle(setup); }});
   if (const auto* error = std::get_if<std::string>(&dashboard)) {
     spdlog::error("{}", *error);
     return kExitRuntime;
@@ -579,16 +618,18 @@ int Daemon::run() {
   dashboard_ = std::move(std::get<std::unique_ptr<RunDashboard>>(dashboard));
   restore_signing();
   open_links();
+  const core::HostTime begun = io::host_now();
   for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {  // slot i: config vehicle i
-    summary_.describe_vehicle(config_.vehicles[slot], *vehicles_[slot].link);
+    summary_.describe_vehicle(config_.vehicles[slot], *vehicles_[slot].link, begun);
   }
-  summary_.begin(io::host_now());
+  summary_.begin(begun);
   start_source();
   every(tick_timer_, kTickPeriod, [this] {
     const core::HostTime now = io::host_now();
     dispatch(bridge_.on_tick(now));
     destroy_retired(now);
     warn_late_frames(now);
+    log_rejections();
   });
   every(flush_timer_, kFlushPeriod, [this] {
     if (recorder_) recorder_->flush();

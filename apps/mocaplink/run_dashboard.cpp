@@ -72,6 +72,8 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     // The context lists links in the snapshot's vehicle order (live vehicles by slot).
     const core::BridgeSnapshot snapshot = access_.bridge.snapshot(io::host_now());
     context_.source_error = access_.source_error;
+    context_.source_rejected_reason = access_.source_counters.last_rejection.get();  // first
+    context_.source_rejected = access_.source_counters.rejected();
     context_.bridge_latency = access_.bridge_latency.summary();
     context_.late_frames_skipped = access_.late_frames.skipped();
     context_.links.clear();
@@ -80,8 +82,9 @@ class RunDashboard::Backend final : public web::DashboardBackend {
       const io::Link* link =
           v.index < access_.vehicles.size() ? access_.vehicles[v.index].link.get() : nullptr;
       context_.links.push_back(link != nullptr ? link->url() : "");
-      const auto state = link != nullptr ? link->state() : io::LinkState::closed;
-      context_.links_down.push_back(state == io::LinkState::down || state == io::LinkState::closed);
+      const auto state = link != nullptr ? link->state() : io::TransportState::closed;
+      context_.links_down.push_back(state == io::TransportState::down ||
+                                    state == io::TransportState::closed);
     }
     return builder_.build(snapshot, context_);
   }
@@ -92,6 +95,9 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     }
     if (const auto* remove = std::get_if<web::RemoveVehicle>(&change)) {
       return access_.remove_vehicle(remove->name);
+    }
+    if (const auto* setup = std::get_if<web::SetupVehicle>(&change)) {
+      return access_.setup_vehicle(*setup);
     }
     const web::AddVehicle& add = std::get<web::AddVehicle>(change);
     return access_.add_vehicle(add.keys, add.paused);
@@ -114,6 +120,7 @@ std::variant<std::unique_ptr<RunDashboard>, std::string> RunDashboard::start(
   server_config.host = access.config.http.listen.host;
   server_config.port = access.config.http.listen.port;
   server_config.token = access.config.http.token;
+  server_config.allowed_hosts = access.config.http.allowed_hosts;
   server_config.max_connections_per_client = access.config.http.max_connections_per_client;
   dashboard->server_ = std::make_unique<web::DashboardServer>(*dashboard->backend_, server_config);
   if (auto error = dashboard->server_->start()) return "dashboard: " + *error;

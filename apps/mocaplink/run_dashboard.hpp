@@ -15,6 +15,7 @@
 #include "mocaplink/core/bridge.hpp"
 #include "mocaplink/core/late_frames.hpp"
 #include "mocaplink/core/latency_window.hpp"
+#include "mocaplink/sources/source.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 #include "run_links.hpp"
 
@@ -27,9 +28,11 @@ namespace mocaplink::app {
 /// What the dashboard reads and changes; all of it is touched on the loop thread only.
 struct DashboardAccess {
   core::Bridge& bridge;
-  const config::Config& config;               ///< [http] and the source URL
-  const std::vector<VehicleLink>& vehicles;   ///< by vehicle slot, as in the Bridge
-  const std::string& source_error;            ///< the source's last problem, "" when connected
+  const config::Config& config;              ///< [http] and the source URL
+  const std::vector<VehicleLink>& vehicles;  ///< by vehicle slot, as in the Bridge
+  const std::string& source_error;           ///< the source's last problem, "" when connected
+  /// The source's counters: packets it dropped unread (rejected()) and why (any thread).
+  const sources::SourceCounters& source_counters;
   const core::LatencyWindow& bridge_latency;  ///< frame received → its last datagram sent
   const core::LateFrames& late_frames;        ///< frames skipped as too late (core/late_frames)
   /// Adds a vehicle given as the keys of a [[vehicle]] table and starts it (paused if asked).
@@ -40,6 +43,8 @@ struct DashboardAccess {
   std::function<std::optional<web::ApiError>(const std::string& name)> remove_vehicle;
   /// Changes a running vehicle (rate_hz, messages through config::update_vehicle; paused).
   std::function<std::optional<web::ApiError>(const web::UpdateVehicle& update)> update_vehicle;
+  /// Writes a vehicle's set-up fixes or reboots it (core::Bridge::apply_setup, reboot_vehicle).
+  std::function<std::optional<web::ApiError>(const web::SetupVehicle& setup)> setup_vehicle;
 };
 
 class RunDashboard {

@@ -5,13 +5,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "mocaplink/core/rate_window.hpp"
+
 namespace mocaplink::app {
 namespace {
-
-/// Pose/GPS messages sent so far: the count of the most-sent kind (one per due send).
-std::uint64_t poses_sent(const core::SenderCounters& c) {
-  return *std::max_element(c.sent.begin(), c.sent.end());
-}
 
 std::uint64_t rejected(const mavlink::ParserCounters& p) {
   return p.bad_crc + p.unknown_incompat + p.bad_signature + p.replay + p.stale_new_stream +
@@ -37,7 +34,8 @@ std::string vehicle_state(const core::VehicleStatus& v) {
 Summary::Summary(const config::Config& config, std::chrono::milliseconds period)
     : config_(config), period_(period) {}
 
-void Summary::describe_vehicle(const config::Vehicle& v, const io::Link& link) const {
+void Summary::describe_vehicle(const config::Vehicle& v, const io::Link& link, core::HostTime now) {
+  started_[v.spec.name] = now;
   spdlog::info("vehicle {}: body {} -> {} as system {} component {}, profile {}, {:g} Hz{}{}",
                v.spec.name, v.spec.body, link.url(), v.spec.system_id, v.spec.component_id,
                core::to_string(v.spec.profile), v.spec.rate_hz,
@@ -45,19 +43,35 @@ void Summary::describe_vehicle(const config::Vehicle& v, const io::Link& link) c
 }
 
 void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {
-  auto& limit = limits_[std::string(core::to_string(event.kind)) + "/" + event.subject];
-  if (limit.last != core::HostTime{} && now - limit.last < std::chrono::seconds(1)) {
-    ++limit.suppressed;
-    return;
+  std::string suppressed;
+  // What was asked of a vehicle, and its set-up, come a few lines per boot of the vehicle, never
+  // per retry (core::VehicleStreams, core::VehicleSetup, which also logs a repeated STATUSTEXT
+  // once per 30 s), and each says something different: all are logged.
+  if (event.kind != core::BridgeEventKind::vehicle_streams &&
+      event.kind != core::BridgeEventKind::vehicle_setup) {
+    auto& limit = limits_[std::string(core::to_string(event.kind)) + "/" + event.subject];
+    if (limit.last != core::HostTime{} && now - limit.last < std::chrono::seconds(1)) {
+      ++limit.suppressed;
+      return;
+    }
+    if (limit.suppressed > 0)
+      suppressed = fmt::format(" ({} similar suppressed)", limit.suppressed);
+    limit = Limit{now, 0};
   }
-  const std::string suppressed =
-      limit.suppressed > 0 ? fmt::format(" ({} similar suppressed)", limit.suppressed) : "";
-  limit = Limit{now, 0};
-  const bool bad = event.kind == core::BridgeEventKind::body_lost ||
-                   (event.kind == core::BridgeEventKind::agreement &&
-                    event.text.find("disagree") != std::string::npos) ||
-                   (event.kind == core::BridgeEventKind::origin_state &&
-                    event.text.find("conflict") != std::string::npos);
+  const auto has = [&](std::string_view word) {
+    return event.text.find(word) != std::string::npos;
+  };
+  const bool bad =
+      event.kind == core::BridgeEventKind::body_lost ||
+      (event.kind == core::BridgeEventKind::agreement && has("disagree")) ||
+      (event.kind == core::BridgeEventKind::origin_state &&
+       (has("conflict") || has("unconfirmed"))) ||
+      (event.kind == core::BridgeEventKind::vehicle_setup &&
+       (has("set-up blocked") || has("set-up no answer") || has("the vehicle kept") ||
+        has("never confirmed") || has("vehicle says (error)") || has("vehicle says (critical)") ||
+        has("vehicle says (alert)") || has("vehicle says (emergency)"))) ||
+      (event.kind == core::BridgeEventKind::vehicle_streams &&
+       (has("no ATTITUDE") || has("no LOCAL_POSITION_NED") || has("not asked again")));
   const auto level = bad ? spdlog::level::warn : spdlog::level::info;
   spdlog::log(level, "{} {}: {}{}", core::to_string(event.kind), event.subject, event.text,
               suppressed);
@@ -74,15 +88,22 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
     return snapshot.time - entry.second.last > std::chrono::minutes(1);
   });
   const auto& st = snapshot.station;
+  // Periodic: the Station's rate over its last second. Final: the whole run's average.
+  const core::HostTime run_start = begun_.value_or(snapshot.time);
+  const std::string source_rate =
+      final ? fmt::format("{:.1f} Hz on average over the run's {:.1f} s",
+                          core::average_rate_hz(st.frames, snapshot.time - run_start),
+                          core::to_seconds(snapshot.time - run_start))
+            : fmt::format("{:.1f} Hz", st.frame_rate_hz);
   spdlog::info(
-      "{}source {}: {}, {} frames ({:.1f} Hz), {} dropped, {} queue overflows, {} late frames "
-      "skipped",
+      "{}source {}: {}, {} frames ({}), {} dropped, {} queue overflows, {} late frames skipped",
       final ? "final: " : "", config_.mocap.source.text,
-      st.connected ? "connected" : "not connected", st.frames, st.frame_rate_hz,
+      st.connected ? "connected" : "not connected", st.frames, source_rate,
       st.drops_counted ? std::to_string(st.dropped) : std::string("n/a"), queue_overflows,
       late_frames);
   const bool detailed = snapshot.vehicles.size() <= kDetailedVehicles;
   std::map<std::string, Previous> next;  // only live vehicles: removed ones are forgotten
+  std::map<std::string, core::HostTime> started;
   double min_hz = 0.0;
   double max_hz = 0.0;
   std::uint64_t total_sent = 0;
@@ -93,38 +114,59 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
     if (v.index >= links.size() || !links[v.index].link) continue;
     const io::Link& link = *links[v.index].link;
     const auto c = link.counters();
-    const std::uint64_t poses = poses_sent(v.sender.counters);
-    // A vehicle added since the last summary (or removed and added again) counts from zero.
+    const std::uint64_t poses = v.sender.counters.poses;
+    // Final: poses over the time since the vehicle started (the run, or since it was added).
+    const auto since = started_.find(v.name);
+    const core::HostTime vehicle_start = since != started_.end() ? since->second : run_start;
+    started[v.name] = vehicle_start;
+    // Periodic: over the period. A vehicle added since the last summary (or removed and added
+    // again) counts from zero.
     const auto before = previous_.find(v.name);
     const std::uint64_t poses_before =
         before != previous_.end() && before->second.poses <= poses ? before->second.poses : 0;
-    const double pose_hz = dt > 0 ? static_cast<double>(poses - poses_before) / dt : 0.0;
-    next[v.name] = Previous{poses, c.frames_sent};
+    const double pose_hz = final ? core::average_rate_hz(poses, snapshot.time - vehicle_start)
+                                 : (dt > 0 ? static_cast<double>(poses - poses_before) / dt : 0.0);
+    const double lived_s = core::to_seconds(snapshot.time - vehicle_start);
+    std::string pose_rate = fmt::format("{:.1f} Hz poses over the last {:.0f} s", pose_hz, dt);
+    if (final && vehicle_start == run_start) {
+      pose_rate =
+          fmt::format("{:.1f} Hz poses on average over the run's {:.1f} s", pose_hz, lived_s);
+    } else if (final) {
+      pose_rate = fmt::format("{:.1f} Hz poses on average over the {:.1f} s since it was added",
+                              pose_hz, lived_s);
+    }
     const std::uint64_t dropped = c.dropped_down + c.dropped_backlog;
     const std::uint64_t errors = c.send_errors + c.receive_errors;
+    const std::uint64_t trouble = dropped + errors + rejected(c.parser);
+    next[v.name] = Previous{poses, trouble};
     min_hz = first ? pose_hz : std::min(min_hz, pose_hz);
     first = false;
     max_hz = std::max(max_hz, pose_hz);
     total_sent += c.frames_sent;
     total_dropped += dropped;
     total_errors += errors;
-    const bool problem = dropped > 0 || errors > 0 || rejected(c.parser) > 0;
+    // A warning when something was dropped, failed or rejected in this period (or ever, in the
+    // final line): three frames dropped at start-up do not make every later line a warning.
+    const std::uint64_t trouble_before =
+        before != previous_.end() && before->second.trouble <= trouble ? before->second.trouble : 0;
+    const bool problem = final ? trouble > 0 : trouble > trouble_before;
     if (!detailed && !problem && !final) continue;
     spdlog::log(problem ? spdlog::level::warn : spdlog::level::info,
-                "{}vehicle {}: {:.1f} Hz poses ({} total), link {} {}: {} frames sent, {} "
-                "dropped, {} errors, {} refused; {} frames received, {} rejected; {}",
-                final ? "final: " : "", v.name, pose_hz, poses, link.url(),
+                "{}vehicle {}: {} ({} total), link {} {}: {} frames sent, {} dropped, {} "
+                "errors, {} refused; {} frames received, {} rejected; {}",
+                final ? "final: " : "", v.name, pose_rate, poses, link.url(),
                 io::to_string(link.state()), c.frames_sent, dropped, errors, c.refused,
                 c.parser.frames, rejected(c.parser), vehicle_state(v));
   }
   if (!detailed) {
     spdlog::info(
-        "{}vehicles: {}, pose rate {:.1f}..{:.1f} Hz, {} frames sent, {} dropped, {} "
-        "errors",
-        final ? "final: " : "", snapshot.vehicles.size(), min_hz, max_hz, total_sent, total_dropped,
-        total_errors);
+        "{}vehicles: {}, pose rate {:.1f}..{:.1f} Hz{}, {} frames sent, {} dropped, {} errors",
+        final ? "final: " : "", snapshot.vehicles.size(), min_hz, max_hz,
+        final ? " on average over the run" : fmt::format(" over the last {:.0f} s", dt), total_sent,
+        total_dropped, total_errors);
   }
   previous_ = std::move(next);
+  started_ = std::move(started);
 }
 
 }  // namespace mocaplink::app

@@ -1,12 +1,14 @@
 // A fake PX4 vehicle on UDP (node-mavlink encodes and decodes): it sends heartbeats, answers the
 // bridge's TIMESYNC requests from a clock 1000 s ahead of the host's steady clock, sends its own
-// TIMESYNC request, and answers SET_GPS_GLOBAL_ORIGIN with GPS_GLOBAL_ORIGIN. Expected: the bridge
-// answers our TIMESYNC (ts1 mirrored, addressed to us), estimates the offset (~1000 s, from its
-// summary line), marks the origin confirmed and stops sending SET_GPS_GLOBAL_ORIGIN.
+// TIMESYNC request, says it is PX4 1.15.2 when asked for AUTOPILOT_VERSION, and answers
+// SET_GPS_GLOBAL_ORIGIN with GPS_GLOBAL_ORIGIN. Expected: the bridge answers our TIMESYNC (ts1
+// mirrored, addressed to us), estimates the offset (~1000 s, from its summary line), sends no
+// origin before the vehicle has said its version (a PX4 before 1.15 is never sent one:
+// docs/setup.md "The origin"), marks the origin confirmed and stops sending SET_GPS_GLOBAL_ORIGIN.
 'use strict';
 
 const path = require('node:path');
-const { MavLinkProtocolV2, common, minimal } = require('node-mavlink');
+const { MavLinkProtocolV2, common, minimal, standard } = require('node-mavlink');
 const h = require('./harness');
 
 const { assert, ID } = h;
@@ -24,6 +26,8 @@ async function main() {
   const vehicleNowNs = () => process.hrtime.bigint() + AHEAD_NS;  // CLOCK_MONOTONIC, as the bridge
   const replies = [];
   let originsAnswered = 0;
+  let originsBeforeVersion = 0;
+  let versionAnswered = false;
   let ourTs1 = null;
   vehicle.decoder.parser.on('data', (packet) => {
     const m = h.decode(packet);
@@ -38,7 +42,14 @@ async function main() {
       } else {
         replies.push(m);
       }
+    } else if (packet.header.msgid === ID.COMMAND_LONG && m.command === 512 && Math.round(m._param1) === 148) {
+      const v = new standard.AutopilotVersion();  // REQUEST_MESSAGE(AUTOPILOT_VERSION)
+      v.capabilities = 2n | 16n;  // PARAM_FLOAT | PARAM_ENCODE_BYTEWISE, as PX4 sets them
+      v.flightSwVersion = (1 << 24) | (15 << 16) | (2 << 8) | 255;  // 1.15.2, official
+      vehicle.send(serialize(v, seq++ & 255));
+      versionAnswered = true;
     } else if (packet.header.msgid === ID.SET_GPS_GLOBAL_ORIGIN) {
+      if (!versionAnswered) originsBeforeVersion += 1;
       const r = new common.GpsGlobalOrigin();
       r.latitude = m.latitude;
       r.longitude = m.longitude;
@@ -93,6 +104,8 @@ async function main() {
     `timesync offset ${offsetMs} ms (rtt ${rttMs} ms), expected 1e6 ms`);
   // Origin: confirmed, and no SET_GPS_GLOBAL_ORIGIN after the confirmation.
   assert.ok(originsAnswered >= 1);
+  assert.ok(versionAnswered, 'never asked for AUTOPILOT_VERSION');
+  assert.equal(originsBeforeVersion, 0, 'SET_GPS_GLOBAL_ORIGIN sent before the PX4 said its version');
   assert.match(run.stderr, /origin_state px4: .*confirmed/);
   assert.equal(vehicle.ofId(ID.SET_GPS_GLOBAL_ORIGIN).length, confirmedOrigins,
     'SET_GPS_GLOBAL_ORIGIN still sent after confirmation');

@@ -9,12 +9,17 @@ const dgram = require('node:dgram');
 const fs = require('node:fs');
 const os = require('node:os');
 const path = require('node:path');
-const { MavLinkPacketSplitter, MavLinkPacketParser, minimal, common } = require('node-mavlink');
+const {
+  MavLinkPacketSplitter, MavLinkPacketParser, minimal, common, standard, ardupilotmega,
+} = require('node-mavlink');
 
 const BIN = process.env.MOCAPLINK_BIN;
 if (!BIN) throw new Error('MOCAPLINK_BIN is not set (CTest sets it to the built binary)');
 
-const REGISTRY = { ...minimal.REGISTRY, ...common.REGISTRY };
+// AUTOPILOT_VERSION is in node-mavlink's `standard` dialect, EKF_STATUS_REPORT in `ardupilotmega`.
+const REGISTRY = {
+  ...minimal.REGISTRY, ...standard.REGISTRY, ...common.REGISTRY, ...ardupilotmega.REGISTRY,
+};
 
 /// A fresh temporary directory, removed at exit.
 function tempDir(prefix) {
@@ -58,9 +63,10 @@ function mocaplink(args, options) {
 }
 
 /// Resolves when `predicate()` holds (polled every 10 ms); rejects after `timeoutMs`.
+/// Waits until `predicate` (which may be async) returns something truthy.
 async function waitFor(predicate, timeoutMs, what) {
   const deadline = Date.now() + timeoutMs;
-  while (!predicate()) {
+  while (!(await predicate())) {
     if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
     await new Promise((r) => setTimeout(r, 10));
   }
@@ -126,6 +132,15 @@ const ID = {
   HIL_GPS: 113, ATT_POS_MOCAP: 138, GPS_INPUT: 232, ODOMETRY: 331,
 };
 
+/// A UDP port free on 127.0.0.1 right now (bound, then closed; the caller's process binds it next).
+async function freeUdpPort() {
+  const s = dgram.createSocket('udp4');
+  await new Promise((resolve) => s.bind(0, '127.0.0.1', resolve));
+  const { port } = s.address();
+  await new Promise((resolve) => s.close(resolve));
+  return port;
+}
+
 /// Waits for `proc` to print a line matching `re` on stderr; returns the match.
 async function waitForLog(proc, re, timeoutMs = 10000) {
   let m = null;
@@ -167,6 +182,6 @@ async function stop(proc) {
 }
 
 module.exports = {
-  assert, BIN, dashboardApi, Decoder, fail, ID, UdpVehicle, decode, mocaplink, sleep, start, stop, tempDir, writeConfig, waitFor,
+  assert, BIN, dashboardApi, Decoder, fail, freeUdpPort, ID, UdpVehicle, decode, mocaplink, sleep, start, stop, tempDir, writeConfig, waitFor,
   waitForLog,
 };

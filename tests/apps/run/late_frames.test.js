@@ -82,7 +82,7 @@ async function main() {
   };
   const logBefore = run.stderr.length;  // the warning must come from this stall
   const reading = drain();
-  await h.waitFor(() => /warning the bridge is behind the source: \d+ frames? skipped/
+  await h.waitFor(() => /warning \d+ frames? skipped as too old to send/
     .test(run.stderr.slice(logBefore)), 10000, `the warning\n${run.stderr}`);
   const posesAfter = vehicle.packets.length;
   await h.waitFor(() => vehicle.packets.length > posesAfter + 50, 10000,

@@ -51,6 +51,22 @@ async function main() {
     { env: { MOCAPLINK_STATE_DIR: path.join(dir, 'state') } });
   await h.waitFor(() => tcpPackets[1].length >= 40 && serialPackets.length >= 60, 15000,
     `traffic on both links\n${run.stderr}`);
+  // The summary (every 1 s here) warns in the period frames were dropped while the link was
+  // down, and is info again in the next periods, with the run's total still shown.
+  const tcpSummaries = () => run.stderr.split('\n').filter((l) => / vehicle tcp: .* Hz poses over the last/.test(l));
+  const dropped = (line) => Number(/ (\d+) dropped,/.exec(line)[1]);
+  await h.waitFor(() => {
+    const lines = tcpSummaries();
+    const w = lines.findIndex((l) => / warning /.test(l));
+    return w >= 0 ? lines.slice(w + 1).some((l) => / info /.test(l)) : lines.length >= 4;
+  }, 10000, `summaries of vehicle tcp\n${run.stderr}`);
+  const summaries = tcpSummaries();
+  const warned = summaries.findIndex((l) => / warning /.test(l));
+  if (warned >= 0) {
+    assert.ok(dropped(summaries[warned]) > 0, summaries[warned]);
+    const later = summaries.slice(warned + 1).find((l) => / info /.test(l));
+    assert.ok(dropped(later) >= dropped(summaries[warned]), later);
+  }
   await h.stop(run);
   relay.child.kill('SIGTERM');
   server.close();
@@ -68,7 +84,8 @@ async function main() {
   decoders.forEach((d) => assert.equal(d.invalid, 0, 'TCP: CRC failures'));
   assert.match(run.stderr, /vehicle tcp: link down/);
   console.log(`ok: serial ${serialPackets.length} packets via ${tty}; TCP ${connections} ` +
-    `connections, ${tcpPackets[1].length} packets after the reconnect`);
+    `connections, ${tcpPackets[1].length} packets after the reconnect; summary ` +
+    (warned >= 0 ? `warned of ${dropped(summaries[warned])} dropped, then info` : 'never warned (nothing dropped)'));
 }
 
 main().catch(h.fail);

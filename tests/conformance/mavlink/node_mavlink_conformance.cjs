@@ -18,7 +18,12 @@ const mavlink = require('node-mavlink');
 
 const bin = process.argv[2];
 if (!bin) throw new Error('usage: node_mavlink_conformance.cjs PATH_TO_MOCAPLINK');
-const REGISTRY = { ...mavlink.minimal.REGISTRY, ...mavlink.common.REGISTRY };
+// AUTOPILOT_VERSION is in node-mavlink's `standard` dialect, EKF_STATUS_REPORT in `ardupilotmega`
+// (message ids are unique across dialects, so the merge replaces nothing).
+const REGISTRY = {
+  ...mavlink.minimal.REGISTRY, ...mavlink.standard.REGISTRY, ...mavlink.common.REGISTRY,
+  ...mavlink.ardupilotmega.REGISTRY,
+};
 const golden = JSON.parse(fs.readFileSync('tests/libs/mavlink/data/golden-vectors.json', 'utf8'));
 const defs = JSON.parse(fs.readFileSync('libs/mavlink/definitions/messages.json', 'utf8')).messages;
 const key = Buffer.from(golden.key_hex, 'hex');
