@@ -53,6 +53,9 @@ function renderStation(station) {
   const late = $('#st-late');
   late.textContent = int(station.late_frames_skipped);
   late.className = station.late_frames_skipped > 0 ? 'bad' : '';
+  const superseded = $('#st-superseded');
+  superseded.textContent = int(station.superseded_frames);
+  superseded.className = station.superseded_frames > 0 ? 'bad' : '';
 
   const tbody = $('#bodies tbody');
   const rows = station.bodies.map((b) => {

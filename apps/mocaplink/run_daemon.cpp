@@ -139,6 +139,7 @@ class Daemon {
   std::unique_ptr<Recorder> recorder_;
   io::BoundedQueue<QueuedFrame> queue_;
   std::vector<QueuedFrame> batch_;
+  std::vector<Recorder::FrameFate> fates_;  // of batch_'s frames, for the recording (drain)
   io::SigningStore store_;
   std::vector<VehicleLink> vehicles_;  // by vehicle slot, as in the Bridge; empty: link == nullptr
   std::vector<Retired> retired_;       // links of removed vehicles, closed, not yet destroyed
@@ -404,18 +405,32 @@ void Daemon::start_source() {
 void Daemon::drain() {
   batch_.clear();
   queue_.drain(batch_);
-  for (auto& item : batch_) {
-    // Too old to send (core/late_frames.hpp): the loop is behind, or the source delivered it late;
-    // go on with fresher frames. Its age is judged now, right before its poses would be sent.
-    const bool late =
-        late_frames_.skip_if_late(bridge_.frame_age(item.frame, item.received, io::host_now()));
-    if (!late) {
+  using Fate = Recorder::FrameFate;
+  fates_.clear();
+  for (std::size_t i = 0; i < batch_.size(); ++i) {
+    const QueuedFrame& item = batch_[i];
+    const core::MocapFrame* next = i + 1 < batch_.size() ? &batch_[i + 1].frame : nullptr;
+    auto fate = Fate::sent;
+    if (late_frames_.skip_if_superseded(item.frame, next)) {
+      // Newest first (core/late_frames.hpp, issue 30): the loop is behind, and a newer frame with
+      // all its bodies is already waiting; only that one is worth the work.
+      fate = Fate::superseded;
+    } else if (late_frames_.skip_if_late(
+                   bridge_.frame_age(item.frame, item.received, io::host_now()))) {
+      // Too old to send: the loop is behind, or the source delivered it late; go on with
+      // fresher frames. Its age is judged now, right before its poses would be sent.
+      fate = Fate::late;
+    } else {
       on_frame(item.frame, item.received);
       bridge_latency_.add(io::host_now() - item.received);
     }
-    // After the sends: the recording keeps every frame, one not sent as comments (a replay then
-    // sends what we sent), and a slow write delays only the next frames, which are judged after.
-    if (recorder_) recorder_->on_frame(item.frame, !late);
+    fates_.push_back(fate);
+  }
+  // After the sends: the recording keeps every frame, one not sent as comments (a replay then
+  // sends what we sent), and a slow write delays only the next frames, which are judged after;
+  // the newest pose of a backlog never waits for the backlog's rows to be written.
+  if (recorder_) {
+    for (std::size_t i = 0; i < batch_.size(); ++i) recorder_->on_frame(batch_[i].frame, fates_[i]);
   }
   summary_.on_frames(batch_.size());
 }
@@ -433,6 +448,13 @@ void Daemon::log_rejections() {
 void Daemon::warn_late_frames(core::HostTime now) {
   const auto late = late_frames_.warning(now);
   if (!late) return;
+  if (late->superseded > 0) {
+    spdlog::warn(
+        "{} frame{} superseded by a newer one already waiting, not sent (the loop is behind: is "
+        "the machine short of CPU for this many vehicles at these rates?)",
+        late->superseded, late->superseded == 1 ? "" : "s");
+  }
+  if (late->skipped == 0) return;
   spdlog::warn(
       "{} frame{} skipped as too old to send, up to {:.0f} ms since capture (more than {} ms is "
       "too old: is the machine overloaded, or did the source deliver them late?)",
@@ -574,7 +596,7 @@ void Daemon::stop(const std::string& reason) {
   // 2. Persist, report, close files. UDP sends were synchronous, so they have left already.
   save_signing();
   summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(),
-               late_frames_.skipped(), true);
+               late_frames_.skipped(), late_frames_.superseded(), true);
   if (recorder_) {
     recorder_->close();
     const auto not_sent = recorder_->frames_not_sent();
@@ -638,7 +660,7 @@ int Daemon::run() {
   every(signing_timer_, kSigningSavePeriod, [this] { save_signing(); });
   every(summary_timer_, settings_.summary_period, [this] {
     summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(),
-                 late_frames_.skipped(), false);
+                 late_frames_.skipped(), late_frames_.superseded(), false);
   });
   dispatch(bridge_.on_tick(io::host_now()));  // first heartbeats at once
   loop_.run();

@@ -76,6 +76,7 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     context_.source_rejected = access_.source_counters.rejected();
     context_.bridge_latency = access_.bridge_latency.summary();
     context_.late_frames_skipped = access_.late_frames.skipped();
+    context_.superseded_frames = access_.late_frames.superseded();
     context_.links.clear();
     context_.links_down.clear();
     for (const auto& v : snapshot.vehicles) {

@@ -34,7 +34,8 @@ struct DashboardAccess {
   /// The source's counters: packets it dropped unread (rejected()) and why (any thread).
   const sources::SourceCounters& source_counters;
   const core::LatencyWindow& bridge_latency;  ///< frame received → its last datagram sent
-  const core::LateFrames& late_frames;        ///< frames skipped as too late (core/late_frames)
+  /// Frames skipped as too late or as superseded (core/late_frames).
+  const core::LateFrames& late_frames;
   /// Adds a vehicle given as the keys of a [[vehicle]] table and starts it (paused if asked).
   std::function<std::optional<web::ApiError>(const std::vector<config::VehicleKey>& keys,
                                              bool paused)>

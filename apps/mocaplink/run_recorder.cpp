@@ -72,7 +72,7 @@ void Recorder::write_header(std::optional<double> rate_hz) {
   if (std::fwrite(header.data(), 1, header.size(), csv_) != header.size()) csv_failed_ = true;
 }
 
-void Recorder::on_frame(const core::MocapFrame& frame, bool sent) {
+void Recorder::on_frame(const core::MocapFrame& frame, FrameFate fate) {
   if (csv_ == nullptr || csv_failed_) return;
   if (last_capture_ && frame.capture_time < *last_capture_) {
     ++frames_skipped_;
@@ -81,14 +81,16 @@ void Recorder::on_frame(const core::MocapFrame& frame, bool sent) {
   write_header(frame.frame_rate_hz);
   if (!first_capture_) first_capture_ = frame.capture_time;
   last_capture_ = frame.capture_time;
-  const std::string rows = wire::format_recording_frame(
-      frame, *first_capture_, sent ? std::nullopt : std::optional(kLateComment));
+  std::optional<std::string_view> comment;
+  if (fate == FrameFate::late) comment = kLateComment;
+  if (fate == FrameFate::superseded) comment = kSupersededComment;
+  const std::string rows = wire::format_recording_frame(frame, *first_capture_, comment);
   if (std::fwrite(rows.data(), 1, rows.size(), csv_) != rows.size()) {
     csv_failed_ = true;
     return;
   }
   ++frames_written_;
-  if (!sent) ++frames_not_sent_;
+  if (comment) ++frames_not_sent_;
 }
 
 void Recorder::on_mavlink(std::size_t vehicle, std::int64_t unix_us,

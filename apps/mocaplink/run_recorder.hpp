@@ -43,13 +43,19 @@ class Recorder {
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
 
+  /// What the bridge did with a frame (core/late_frames.hpp).
+  enum class FrameFate {
+    sent,        ///< tracked, and its poses sent
+    late,        ///< skipped: too old when the loop took it
+    superseded,  ///< skipped: a newer frame with all its bodies was already waiting
+  };
   /// One mocap frame. Frames whose capture time goes back (a restarted server) are skipped and
-  /// counted: the format requires time_s never to decrease. A frame the bridge did not send
-  /// (`sent` false: it came too late, core/late_frames.hpp) is written as comment lines, each row
-  /// after "#" kLateComment: kept in the file, but replay:// does not deliver it, so a replay
-  /// sends what the live run sent.
-  void on_frame(const core::MocapFrame& frame, bool sent = true);
+  /// counted: the format requires time_s never to decrease. A frame the bridge did not send is
+  /// written as comment lines, each row after "#" and kLateComment or kSupersededComment: kept in
+  /// the file, but replay:// does not deliver it, so a replay sends what the live run sent.
+  void on_frame(const core::MocapFrame& frame, FrameFate fate = FrameFate::sent);
   static constexpr std::string_view kLateComment = " late, not sent: ";
+  static constexpr std::string_view kSupersededComment = " superseded, not sent: ";
   /// One MAVLink frame sent to or received from the vehicle in slot `vehicle`, at Unix time
   /// `unix_us`.
   void on_mavlink(std::size_t vehicle, std::int64_t unix_us, std::span<const std::uint8_t> bytes);

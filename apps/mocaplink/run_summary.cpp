@@ -78,7 +78,8 @@ void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {
 }
 
 void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
-                  std::uint64_t queue_overflows, std::uint64_t late_frames, bool final) {
+                  std::uint64_t queue_overflows, std::uint64_t late_frames,
+                  std::uint64_t superseded_frames, bool final) {
   const double dt = previous_time_ ? core::to_seconds(snapshot.time - *previous_time_)
                                    : std::chrono::duration<double>(period_).count();
   previous_time_ = snapshot.time;
@@ -96,11 +97,12 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
                           core::to_seconds(snapshot.time - run_start))
             : fmt::format("{:.1f} Hz", st.frame_rate_hz);
   spdlog::info(
-      "{}source {}: {}, {} frames ({}), {} dropped, {} queue overflows, {} late frames skipped",
+      "{}source {}: {}, {} frames ({}), {} dropped, {} queue overflows, {} late frames skipped, "
+      "{} frames superseded",
       final ? "final: " : "", config_.mocap.source.text,
       st.connected ? "connected" : "not connected", st.frames, source_rate,
       st.drops_counted ? std::to_string(st.dropped) : std::string("n/a"), queue_overflows,
-      late_frames);
+      late_frames, superseded_frames);
   const bool detailed = snapshot.vehicles.size() <= kDetailedVehicles;
   std::map<std::string, Previous> next;  // only live vehicles: removed ones are forgotten
   std::map<std::string, core::HostTime> started;

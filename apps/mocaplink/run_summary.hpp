@@ -43,9 +43,11 @@ class Summary {
   /// mentioned with the next one logged.
   void on_event(const core::BridgeEvent& event, core::HostTime now);
   /// The periodic (or, with `final`, the last) summary. `links` by vehicle slot; the queue's
-  /// overflows and the frames skipped as too old (core::LateFrames) since the start.
+  /// overflows and the frames skipped as too old or as superseded (core::LateFrames) since the
+  /// start.
   void log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
-           std::uint64_t queue_overflows, std::uint64_t late_frames, bool final);
+           std::uint64_t queue_overflows, std::uint64_t late_frames,
+           std::uint64_t superseded_frames, bool final);
 
  private:
   struct Limit {

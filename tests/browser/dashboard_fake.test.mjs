@@ -43,6 +43,8 @@ describe('dashboard against the fake backend', () => {
     assert.equal(await page.locator('#st-dropped').textContent(), '3');
     assert.equal(await page.locator('#st-late').textContent(), '5');
     assert.equal(await page.locator('#st-late').getAttribute('class'), 'bad');
+    assert.equal(await page.locator('#st-superseded').textContent(), '7');
+    assert.equal(await page.locator('#st-superseded').getAttribute('class'), 'bad');
     assert.equal(await page.locator('#st-rejected').textContent(), '2');
     assert.equal(await page.locator('#st-rejected').getAttribute('class'), 'bad');
     assert.equal(await page.locator('#st-rejected').getAttribute('title'),

@@ -241,6 +241,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
         BridgeLatencyView{ms(l.last), ms(l.p50), ms(l.p99), ms(l.max)};
   }
   status.station.late_frames_skipped = context.late_frames_skipped;
+  status.station.superseded_frames = context.superseded_frames;
   status.station.rejected = context.source_rejected;
   status.station.rejected_reason = context.source_rejected_reason;
 

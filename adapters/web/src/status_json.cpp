@@ -74,6 +74,7 @@ void to_json(nlohmann::json& j, const StationView& station) {
                      {"bodies", station.bodies},
                      {"bridge_latency_ms", optional_json(station.bridge_latency_ms)},
                      {"late_frames_skipped", station.late_frames_skipped},
+                     {"superseded_frames", station.superseded_frames},
                      {"rejected", station.rejected},
                      {"rejected_reason", station.rejected_reason.empty()
                                              ? nlohmann::json(nullptr)

@@ -12,8 +12,29 @@ bool LateFrames::skip_if_late(Duration age) noexcept {
   return true;
 }
 
+bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept {
+  const auto& have = newer.bodies;
+  // The usual case first: the same bodies in the same order (a frame per capture, every body).
+  if (have.size() >= older.bodies.size() &&
+      std::equal(older.bodies.begin(), older.bodies.end(), have.begin(),
+                 [](const BodySample& a, const BodySample& b) { return a.name == b.name; })) {
+    return true;
+  }
+  return std::all_of(older.bodies.begin(), older.bodies.end(), [&](const BodySample& body) {
+    return std::any_of(have.begin(), have.end(),
+                       [&](const BodySample& b) { return b.name == body.name; });
+  });
+}
+
+bool LateFrames::skip_if_superseded(const MocapFrame& frame, const MocapFrame* next) noexcept {
+  if (next == nullptr || !supersedes(*next, frame)) return false;
+  ++superseded_;
+  ++pending_.superseded;
+  return true;
+}
+
 std::optional<LateWarning> LateFrames::warning(HostTime now) noexcept {
-  if (pending_.skipped == 0) return std::nullopt;
+  if (pending_.skipped == 0 && pending_.superseded == 0) return std::nullopt;
   if (warned_ && now - *warned_ < kLateWarningPeriod) return std::nullopt;
   warned_ = now;
   const LateWarning out = pending_;

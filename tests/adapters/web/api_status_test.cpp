@@ -69,6 +69,7 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_EQ(station["bridge_latency_ms"],
             (json{{"last", 0.12}, {"p50", 0.1}, {"p99", 0.45}, {"max", 0.9}}));
   EXPECT_EQ(station["late_frames_skipped"], 5);
+  EXPECT_EQ(station["superseded_frames"], 7);
   EXPECT_EQ(station["rejected"], 2);
   EXPECT_EQ(station["rejected_reason"],
             "malformed datagram at byte 80: trailing non-zero bytes after 1 item");

@@ -151,6 +151,7 @@ StatusView FakeBackend::status() {
   s.station.dropped = 3;
   s.station.bridge_latency_ms = BridgeLatencyView{0.12, 0.1, 0.45, 0.9};
   s.station.late_frames_skipped = 5;
+  s.station.superseded_frames = 7;
   s.station.rejected = 2;
   s.station.rejected_reason = "malformed datagram at byte 80: trailing non-zero bytes after 1 item";
   const char* names[] = {"Body1", "Body2", "Body3"};

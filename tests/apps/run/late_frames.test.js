@@ -1,11 +1,15 @@
-// A bridge that falls behind its source skips the frames that waited too long, says so, and still
-// records every frame (issue 15; core/late_frames.hpp). The event loop is made to stall for real:
-// the recording's mocap.csv is a FIFO that this test does not read at first, so once the pipe is
-// full the loop blocks in its write while the source thread keeps queueing frames. Then the test
-// reads the FIFO, the loop goes on, and the frames that waited more than 250 ms must be skipped:
-// the warning, the count in the final summary, and every frame handed over either sent through
-// the core (counted by the Station) or skipped — and recorded either way, a skipped one as
-// comments. Replaying that recording at speed 1 then sends as many poses as the live run did.
+// A bridge that falls behind its source sends the newest pose, not a queue of old ones, says so,
+// and still records every frame (issues 15 and 30; core/late_frames.hpp). The event loop is made to
+// stall for real: the recording's mocap.csv is a FIFO that this test does not read at first, so
+// once the pipe is full the loop blocks in its write while the source thread keeps queueing
+// frames. Then the test reads the FIFO, the loop goes on, and of the backlog only the newest frame
+// may be sent: every older one is superseded (a newer frame with all its bodies was waiting) or,
+// if it was the newest of its batch and older than 250 ms, skipped as late. Checked: the warning,
+// the counts in the final summary, the first frame sent after the stall being the newest that was
+// waiting, and every frame handed over either sent through the core (counted by the Station) or
+// skipped — and recorded either way, a skipped one as comments. Replaying that recording at speed
+// 1 then sends as many poses as the live run did (less any frame the replay itself skipped, which
+// it reports: on a loaded machine its loop can fall a frame behind too).
 'use strict';
 
 const childProcess = require('node:child_process');
@@ -15,6 +19,8 @@ const h = require('./harness');
 
 const { assert, ID, sleep } = h;
 const LATE = '# late, not sent: ';  // '#' and run_recorder.hpp kLateComment
+const SUPERSEDED = '# superseded, not sent: ';  // '#' and kSupersededComment
+const FINAL = /final: source \S+: connected, (\d+) frames .*, (\d+) queue overflows, (\d+) late frames skipped, (\d+) frames superseded/;
 
 // ODOMETRY received by `vehicle` once no more datagrams arrive.
 async function settledOdometry(vehicle) {
@@ -82,7 +88,7 @@ async function main() {
   };
   const logBefore = run.stderr.length;  // the warning must come from this stall
   const reading = drain();
-  await h.waitFor(() => /warning \d+ frames? skipped as too old to send/
+  await h.waitFor(() => /warning \d+ frames? superseded by a newer one already waiting, not sent/
     .test(run.stderr.slice(logBefore)), 10000, `the warning\n${run.stderr}`);
   const posesAfter = vehicle.packets.length;
   await h.waitFor(() => vehicle.packets.length > posesAfter + 50, 10000,
@@ -93,26 +99,48 @@ async function main() {
   const liveOdometry = await settledOdometry(vehicle);
   vehicle.close();
 
-  const final = run.stderr.match(
-    /final: source \S+: connected, (\d+) frames .*, (\d+) queue overflows, (\d+) late frames skipped/);
+  const final = run.stderr.match(FINAL);
   assert.ok(final, `no final source line\n${run.stderr}`);
-  const [tracked, overflows, late] = final.slice(1).map(Number);
-  assert.ok(late > 0, `nothing skipped after a stall of over a second\n${run.stderr}`);
+  const [tracked, overflows, late, superseded] = final.slice(1).map(Number);
+  // The backlog of over a second (a few hundred frames) was superseded, not sent in order.
+  assert.ok(superseded > 100, `${superseded} superseded after a stall of over a second\n${run.stderr}`);
   const recording = run.stderr.match(/recording: (\d+) frames in/);
   assert.ok(recording, run.stderr);
   // Every frame the loop took from the queue was recorded; it was then either tracked or skipped,
   // and a skipped one is in the file as comments.
-  assert.equal(Number(recording[1]), tracked + late, run.stderr);
-  assert.match(run.stderr,
-    new RegExp(`recording: \\d+ frames in .* \\(${late} not sent, written as comments\\)`));
+  assert.equal(Number(recording[1]), tracked + late + superseded, run.stderr);
+  assert.match(run.stderr, new RegExp(
+    `recording: \\d+ frames in .* \\(${late + superseded} not sent, written as comments\\)`));
   const lines = csv.split('\n').slice(2).filter((l) => l !== '');
-  const frameOf = (row) => row.split(',')[1];
+  const frameOf = (row) => Number(row.split(',')[1]);
+  const commented = (prefix) => new Set(lines.filter((l) => l.startsWith(prefix))
+    .map((l) => frameOf(l.slice(prefix.length))));
   const sent = new Set(lines.filter((l) => !l.startsWith('#')).map(frameOf));
-  const notSent = new Set(lines.filter((l) => l.startsWith(LATE))
-    .map((l) => frameOf(l.slice(LATE.length))));
+  const lateFrames = commented(LATE);
+  const supersededFrames = commented(SUPERSEDED);
   assert.equal(sent.size, tracked, 'frames in mocap.csv as rows');
-  assert.equal(notSent.size, late, 'frames in mocap.csv as comments');
-  assert.equal([...notSent].filter((f) => sent.has(f)).length, 0, 'a frame both sent and not');
+  assert.equal(lateFrames.size, late, 'late frames in mocap.csv as comments');
+  assert.equal(supersededFrames.size, superseded, 'superseded frames in mocap.csv as comments');
+  assert.equal([...lateFrames, ...supersededFrames].filter((f) => sent.has(f)).length, 0,
+    'a frame both sent and not');
+  // Newest first: every superseded frame has a newer frame behind it (the one that superseded
+  // it), and after the longest run of skipped frames (the backlog) the next frame in the file was
+  // sent: the loop went straight from the stall to the newest pose that was waiting.
+  const order = [...new Set(lines.map((l) => frameOf(l.startsWith('#') ? l.replace(/^# [a-z]+, not sent: /, '') : l)))];
+  let longest = { start: 0, length: 0 };
+  for (let i = 0, run0 = 0; i < order.length; i += 1) {
+    if (sent.has(order[i])) {
+      run0 = i + 1;
+    } else if (i + 1 - run0 > longest.length) {
+      longest = { start: run0, length: i + 1 - run0 };
+    }
+  }
+  const afterBacklog = order[longest.start + longest.length];
+  assert.ok(longest.length > 100, `the backlog: ${longest.length} frames skipped in a row`);
+  assert.ok(sent.has(afterBacklog), `frame ${afterBacklog}, right after the backlog, was not sent`);
+  for (const f of supersededFrames) {
+    assert.ok(order.indexOf(f) < order.length - 1, `superseded frame ${f} is the last one`);
+  }
 
   // The replay sends what the live run sent: the skipped frames are comments, so it skips them.
   const file = path.join(dir, 'live.csv');
@@ -126,13 +154,18 @@ async function main() {
   const { code } = await replay.exited;  // it stops by itself at the end of the recording
   assert.equal(code, 0, replay.stderr);
   assert.match(replay.stderr, new RegExp(`${tracked} frames replayed`));
-  assert.match(replay.stderr, /0 late frames skipped/);
+  const replayFinal = replay.stderr.match(
+    /final: source .* (\d+) late frames skipped, (\d+) frames superseded/);
+  assert.ok(replayFinal, replay.stderr);
+  const replaySkipped = Number(replayFinal[1]) + Number(replayFinal[2]);
   const replayOdometry = await settledOdometry(target);
   target.close();
-  assert.equal(replayOdometry, liveOdometry,
-    `ODOMETRY: replay ${replayOdometry}, live ${liveOdometry}`);
-  console.log(`ok: ${late} late frames skipped, ${tracked} tracked (${overflows} overflows); ` +
-    `${liveOdometry} ODOMETRY live and replayed`);
+  // One ODOMETRY per frame sent (rate_hz = the mocap rate): equal when the replay kept up.
+  assert.equal(replayOdometry + replaySkipped, liveOdometry,
+    `ODOMETRY: replay ${replayOdometry} (${replaySkipped} frames skipped), live ${liveOdometry}`);
+  console.log(`ok: ${superseded} frames superseded and ${late} late, ${tracked} tracked ` +
+    `(${overflows} overflows); ${liveOdometry} ODOMETRY live, ${replayOdometry} replayed ` +
+    `(${replaySkipped} skipped by the replay)`);
 }
 
 main().catch(h.fail);

@@ -6,6 +6,11 @@
 // replay://…/mocap.csv?speed=1 is run with the same vehicles until the recording ends. Counts
 // are compared per vehicle and message id; the clock-driven messages (HEARTBEAT, TIMESYNC,
 // SET_GPS_GLOBAL_ORIGIN and its REQUEST) depend on how long each process ran and are left out.
+// A frame the live run did not send is a comment in the recording, so the replay never sends it.
+// A frame the replay itself skips (its loop a frame behind on a loaded machine: superseded, issue
+// 30) it reports in its final line; each costs a vehicle at most one of each message (the send
+// slots keep their phase), so the counts are equal when it skipped none and otherwise short by
+// at most that many.
 'use strict';
 
 const path = require('node:path');
@@ -69,10 +74,22 @@ async function main() {
     [], async () => {});  // the daemon stops by itself when the recording ends
   assert.match(replay.stderr, new RegExp(`${frames} frames replayed`));
 
+  const skipped = replay.stderr.match(/final: source .* (\d+) late frames skipped, (\d+) frames superseded/);
+  assert.ok(skipped, replay.stderr);
+  const replaySkipped = Number(skipped[1]) + Number(skipped[2]);
   const names = ['quad (px4, 240 Hz)', 'classic (100 Hz)', 'rover (ardupilot-gps, 50 Hz)'];
   for (let i = 0; i < 3; i += 1) {
-    assert.deepEqual(replay.counts[i], live.counts[i],
-      `${names[i]}: replay sent ${JSON.stringify(replay.counts[i])}, live ${JSON.stringify(live.counts[i])}`);
+    const what = `${names[i]}: replay sent ${JSON.stringify(replay.counts[i])}, live ` +
+      `${JSON.stringify(live.counts[i])}, ${replaySkipped} frames skipped by the replay`;
+    if (replaySkipped === 0) {
+      assert.deepEqual(replay.counts[i], live.counts[i], what);
+    } else {
+      assert.deepEqual(Object.keys(replay.counts[i]).sort(), Object.keys(live.counts[i]).sort(), what);
+      for (const id of Object.keys(live.counts[i])) {
+        const short = live.counts[i][id] - replay.counts[i][id];
+        assert.ok(short >= 0 && short <= replaySkipped, what);
+      }
+    }
   }
   // The rates themselves: 240 Hz from 240 Hz frames is every frame the body was tracked in, and
   // the decimated vehicles got about 100/240 and 50/240 of the frames.
@@ -80,7 +97,8 @@ async function main() {
   const gps = live.counts[2][ID.GPS_INPUT];
   assert.ok(odometry > 0.9 * frames && odometry <= frames, `px4: ${odometry} of ${frames} frames`);
   assert.ok(Math.abs(gps - frames * 50 / 240) <= 2, `rover: ${gps} GPS_INPUT for ${frames} frames`);
-  console.log(`ok: ${frames} frames; live = replay: ${JSON.stringify(live.counts)}`);
+  console.log(`ok: ${frames} frames; live ${JSON.stringify(live.counts)}, replay ` +
+    `${JSON.stringify(replay.counts)} (${replaySkipped} frames skipped by the replay)`);
 }
 
 main().catch(h.fail);

@@ -2,7 +2,10 @@
 // --stall 1.5:MS`) holds its frames back for MS ms, as a stalled network would, then lets them out
 // in one burst with the frames after the stall, as a TCP connection delivers its backlog. The
 // burst arrives fresh but was captured up to MS ms before: `mocaplink run` must judge its age from
-// the capture, skip and count the frames too old to send, and mark them in the recording.
+// the capture, skip and count the frames too old to send, and mark them in the recording. A burst
+// that reaches the loop as one batch has only its newest frame sent, the older ones superseded
+// (issue 30); frames that come one batch at a time are judged late; either way they are skipped,
+// counted and marked.
 //
 // The vehicle checks what reaches it: every ODOMETRY's time_usec is the pose's capture time on
 // the daemon's steady clock (docs/messages.md "Time"), the same CLOCK_MONOTONIC as this process's
@@ -17,7 +20,7 @@ const h = require('./harness');
 const { assert, ID } = h;
 const RATE_HZ = 100;
 const STALL_AT_S = 1.5;
-const LATE = '# late, not sent: ';
+const NOT_SENT = /^# (late|superseded), not sent: /;
 /// Anything older on arrival was sent although too old: the limit is 250 ms, and the margin
 /// covers this process being slow to read its socket on a loaded machine. A stall of 600 ms makes
 /// the burst's oldest frames 600 ms old, far past it.
@@ -66,7 +69,8 @@ async function runOnce(dir, p) {
   await h.waitFor(() => vehicle.ofId(ID.ODOMETRY).length > 0, 10000,
     `${p.name}: first ODOMETRY\n${run.stderr}`);
   // Past the stall and its burst, with a second of normal running after it.
-  await h.waitForLog(run, /\d+ frames? skipped as too old to send/, 10000);
+  await h.waitForLog(run,
+    /\d+ frames? (skipped as too old to send|superseded by a newer one already waiting)/, 10000);
   await h.sleep(1000);
   await h.stop(run);
   await h.stop(server);
@@ -80,18 +84,21 @@ async function runOnce(dir, p) {
     `${p.name}: an ODOMETRY arrived ${oldest.toFixed(0)} ms after its capture\n${run.stderr}`);
   assert.ok(odometry.length > 100, `${p.name}: only ${odometry.length} ODOMETRY`);
 
-  const final = run.stderr.match(/final: source \S+: \S+, (\d+) frames .*, (\d+) late frames skipped/);
+  const final = run.stderr.match(
+    /final: source \S+: \S+, (\d+) frames .*, (\d+) late frames skipped, (\d+) frames superseded/);
   assert.ok(final, `${p.name}: no final source line\n${run.stderr}`);
   const late = Number(final[2]);
+  const superseded = Number(final[3]);
+  const skipped = late + superseded;
   // At most the frames of the stall; at least one (a server may drop most of a burst for a slow
   // client, as the Vicon emulator does with its per-client queue: whole frames, counted).
-  assert.ok(late >= 1 && late <= (p.stallMs / 1000) * RATE_HZ + 5,
-    `${p.name}: ${late} late frames skipped\n${run.stderr}`);
+  assert.ok(skipped >= 1 && skipped <= (p.stallMs / 1000) * RATE_HZ + 5,
+    `${p.name}: ${late} late frames skipped, ${superseded} superseded\n${run.stderr}`);
   const csv = fs.readFileSync(path.join(record, 'mocap.csv'), 'latin1').split('\n');
-  const notSent = new Set(csv.filter((l) => l.startsWith(LATE))
-    .map((l) => l.slice(LATE.length).split(',')[1]));
-  assert.equal(notSent.size, late, `${p.name}: frames in mocap.csv marked as not sent`);
-  return { name: p.name, late, oldest: oldest.toFixed(0), odometry: odometry.length };
+  const notSent = new Set(csv.filter((l) => NOT_SENT.test(l))
+    .map((l) => l.replace(NOT_SENT, '').split(',')[1]));
+  assert.equal(notSent.size, skipped, `${p.name}: frames in mocap.csv marked as not sent`);
+  return { name: p.name, late, superseded, oldest: oldest.toFixed(0), odometry: odometry.length };
 }
 
 async function main() {
@@ -99,6 +106,7 @@ async function main() {
   const results = [];
   for (const p of protocols) results.push(await runOnce(dir, p));
   console.log(`ok: ${results.map((r) => `${r.name}: ${r.late} late frames skipped, ` +
+    `${r.superseded} superseded, ` +
     `oldest ODOMETRY ${r.oldest} ms, ${r.odometry} ODOMETRY`).join('; ')}`);
 }
 

@@ -61,5 +61,71 @@ TEST(LateFrames, WarnsAtOnceThenAtMostEveryPeriodWithWhatWasSkippedSince) {
   EXPECT_EQ(third->oldest, 260ms);
 }
 
+MocapFrame frame_of(std::uint64_t number, std::initializer_list<const char*> names) {
+  MocapFrame frame;
+  frame.frame_number = number;
+  for (const char* name : names) frame.bodies.push_back(BodySample{name, true, {}, {}});
+  return frame;
+}
+
+TEST(Supersedes, ANewerFrameWithEveryBodyOfTheOlderOne) {
+  const auto older = frame_of(1, {"Quad1", "Quad2"});
+  EXPECT_TRUE(supersedes(frame_of(2, {"Quad1", "Quad2"}), older));
+  EXPECT_TRUE(supersedes(frame_of(2, {"Quad2", "Quad1"}), older));           // any order
+  EXPECT_TRUE(supersedes(frame_of(2, {"Quad1", "Quad2", "Rover"}), older));  // and more
+  EXPECT_TRUE(supersedes(frame_of(2, {"Rover", "Quad2", "Quad1"}), older));
+  auto untracked = frame_of(2, {"Quad1", "Quad2"});
+  untracked.bodies[1].tracked = false;  // the newer word on Quad2 (lost) is the one that counts
+  EXPECT_TRUE(supersedes(untracked, older));
+  EXPECT_TRUE(supersedes(frame_of(2, {}), frame_of(1, {})));
+}
+
+TEST(Supersedes, NotAFrameThatLacksOneOfItsBodies) {
+  const auto older = frame_of(1, {"Quad1", "Quad2"});
+  EXPECT_FALSE(supersedes(frame_of(2, {"Quad1"}), older));  // a source that splits its bodies
+  EXPECT_FALSE(supersedes(frame_of(2, {"Quad2"}), older));
+  EXPECT_FALSE(supersedes(frame_of(2, {"Quad1", "Rover"}), older));
+  EXPECT_FALSE(supersedes(frame_of(2, {}), older));
+  EXPECT_FALSE(supersedes(frame_of(2, {"quad1", "Quad2"}), older));  // names are exact
+}
+
+TEST(LateFrames, AFrameIsSupersededOnlyByANewerOneWaitingWithAllItsBodies) {
+  LateFrames late;
+  const auto first = frame_of(1, {"Quad1", "Quad2"});
+  const auto second = frame_of(2, {"Quad1", "Quad2"});
+  const auto partial = frame_of(3, {"Quad1"});
+  EXPECT_FALSE(late.skip_if_superseded(first, nullptr));  // the newest: nothing behind it
+  EXPECT_FALSE(late.skip_if_superseded(first, &partial));
+  EXPECT_EQ(late.superseded(), 0u);
+  EXPECT_TRUE(late.skip_if_superseded(first, &second));
+  EXPECT_TRUE(late.skip_if_superseded(partial, &second));
+  EXPECT_EQ(late.superseded(), 2u);
+  EXPECT_EQ(late.skipped(), 0u);  // counted apart from the late ones
+}
+
+TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {
+  LateFrames late;
+  const auto first = frame_of(1, {"Quad1"});
+  const auto second = frame_of(2, {"Quad1"});
+  ASSERT_TRUE(late.skip_if_superseded(first, &second));
+  const auto warned = late.warning(t0);  // superseded alone is warned about, at once
+  ASSERT_TRUE(warned.has_value());
+  EXPECT_EQ(warned->superseded, 1u);
+  EXPECT_EQ(warned->skipped, 0u);
+
+  // Within the period both kinds are held back, then given together.
+  ASSERT_TRUE(late.skip_if_superseded(first, &second));
+  ASSERT_TRUE(late.skip_if_superseded(first, &second));
+  ASSERT_TRUE(late.skip_if_late(t0 + 1s, t0 + 1s + 300ms));
+  EXPECT_FALSE(late.warning(t0 + 2s).has_value());
+  const auto next = late.warning(t0 + kLateWarningPeriod);
+  ASSERT_TRUE(next.has_value());
+  EXPECT_EQ(next->superseded, 2u);
+  EXPECT_EQ(next->skipped, 1u);
+  EXPECT_EQ(next->oldest, 300ms);
+  EXPECT_EQ(late.superseded(), 3u);
+  EXPECT_EQ(late.skipped(), 1u);
+}
+
 }  // namespace
 }  // namespace mocaplink::core

@@ -24,6 +24,8 @@ struct BridgeStatusContext {
   std::optional<core::LatencySummary> bridge_latency{};
   /// Frames the daemon skipped because they reached its loop too late (core::LateFrames).
   std::uint64_t late_frames_skipped = 0;
+  /// Frames the daemon skipped because a newer one was already waiting (core::LateFrames).
+  std::uint64_t superseded_frames = 0;
   std::uint64_t source_rejected = 0;     ///< packets the source dropped unread, cumulative
   std::string source_rejected_reason{};  ///< why the latest was dropped, "" if none or unsaid
 };

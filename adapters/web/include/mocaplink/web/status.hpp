@@ -66,6 +66,9 @@ struct StationView {
   /// Frames the bridge reached more than 250 ms after they arrived, skipped rather than sent
   /// (core::LateFrames; an overloaded machine), cumulative.
   std::uint64_t late_frames_skipped = 0;
+  /// Frames the bridge skipped because a newer frame with all their bodies was already waiting
+  /// (core::LateFrames; a loop that is behind, short of CPU), cumulative.
+  std::uint64_t superseded_frames = 0;
   /// Packets the source dropped unread (malformed, or from another sender than configured),
   /// cumulative, and why the latest was ("" if none, or the source does not say).
   std::uint64_t rejected = 0;

@@ -10,6 +10,16 @@
 //   but was captured long ago (Bridge::frame_age says how long, from the source's own clock).
 // So a frame older than kMaxFrameWait when the loop takes it is skipped and counted, and the loop
 // goes on with the fresher frames behind it: the poses that do leave stay young.
+// Before that limit comes into play, a loop that is behind finds several frames waiting at once
+// (issue 30). Working through them in order would send every pose as late as the backlog is long,
+// up to the 250 ms limit, where a machine short of CPU can still send the newest pose fresh. So a
+// frame with a newer one already waiting behind it that has a sample of each of its bodies
+// (supersedes) is superseded: not tracked, not sent, counted apart from the late ones. Skipped, not
+// folded into the trackers without sends: under overload the CPU is what is short, and the
+// trackers are a large part of a frame's work, so folding would spend it on poses nobody gets and
+// keep the loop behind; a tracker sees the longer step as it sees a dropped frame (its prediction
+// and gate widen with the step); and a replay, which skips what the run did not send, then feeds
+// its trackers exactly what the run's had (docs/daemon.md).
 // Pure; time is passed in; one owner (the event loop).
 #pragma once
 
@@ -17,6 +27,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/time.hpp"
 
 namespace mocaplink::core {
@@ -27,10 +38,17 @@ inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
 /// Skipped frames are warned about at most this often (the first at once).
 inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
 
-/// Frames skipped since the previous warning.
+/// Whether `newer`, a frame that arrived after `older`, makes `older` not worth tracking and
+/// sending: it has a sample of every body `older` has (tracked or not: the newer word on a body is
+/// the one that counts), in any order. A frame that lacks one of `older`'s bodies (a source that
+/// sends some bodies in one frame and the others in the next) does not supersede it.
+[[nodiscard]] bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept;
+
+/// Frames not sent since the previous warning.
 struct LateWarning {
-  std::uint64_t skipped = 0;  ///< how many
-  Duration oldest{};          ///< the age of the oldest of them when it was skipped
+  std::uint64_t skipped = 0;     ///< how many were late
+  Duration oldest{};             ///< the age of the oldest late one when it was skipped
+  std::uint64_t superseded = 0;  ///< how many were superseded by a newer one waiting
 };
 
 class LateFrames {
@@ -45,16 +63,22 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
-  /// Frames skipped since construction.
+  /// True when `next`, the frame taken from the queue right after `frame` (nullptr: none is
+  /// waiting), supersedes it: the caller skips `frame`, and it is counted as superseded.
+  [[nodiscard]] bool skip_if_superseded(const MocapFrame& frame, const MocapFrame* next) noexcept;
+  /// Frames skipped as late since construction.
   [[nodiscard]] std::uint64_t skipped() const noexcept { return skipped_; }
-  /// What to warn about at `now`, if anything was skipped since the previous warning and that
-  /// warning is kLateWarningPeriod old (the first skip is warned about at once); then starts
-  /// counting afresh.
+  /// Frames skipped as superseded since construction.
+  [[nodiscard]] std::uint64_t superseded() const noexcept { return superseded_; }
+  /// What to warn about at `now`, if anything was skipped (late or superseded) since the previous
+  /// warning and that warning is kLateWarningPeriod old (the first skip is warned about at once);
+  /// then starts counting afresh.
   [[nodiscard]] std::optional<LateWarning> warning(HostTime now) noexcept;
 
  private:
   Duration max_wait_;
   std::uint64_t skipped_ = 0;
+  std::uint64_t superseded_ = 0;
   LateWarning pending_;             // since the previous warning
   std::optional<HostTime> warned_;  // when the previous warning was given
 };
