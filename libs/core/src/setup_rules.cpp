@@ -183,6 +183,20 @@ std::string format_value(double v) {
   return text;
 }
 
+/// "PX4 1.14.3", or "PX4" and `unknown` when the version is not known. Built by appending: GCC
+/// 12 warns (-Wrestrict, a false positive) about `"PX4" + std::string&&` in a Release build.
+std::string px4_with_version(const std::optional<FirmwareVersion>& version,
+                             std::string_view unknown) {
+  std::string out = "PX4";
+  if (version) {
+    out += ' ';
+    out += to_string(*version);
+  } else {
+    out += unknown;
+  }
+  return out;
+}
+
 }  // namespace
 
 AutopilotFamily autopilot_family(std::uint8_t mav_autopilot) {
@@ -411,10 +425,12 @@ std::string profile_in_effect(Profile profile, AutopilotFamily autopilot) {
 std::string unconfirmed_origin_advice(AutopilotFamily autopilot,
                                       const std::optional<FirmwareVersion>& version) {
   if (autopilot == AutopilotFamily::px4 && (!version || !version->at_least(1, 15))) {
-    return "PX4" + (version ? " " + to_string(*version) : std::string()) +
-           " takes the origin but, without GPS, neither uses nor reports it (PX4-Autopilot#17249, "
-           "fixed in 1.15): local modes (Position, Offboard) fly, global ones (Mission, RTL) do "
-           "not. Upgrade PX4 to 1.15 or later, or use profile px4-gps (fake GPS)";
+    std::string advice = px4_with_version(version, "");
+    advice +=
+        " takes the origin but, without GPS, neither uses nor reports it (PX4-Autopilot#17249, "
+        "fixed in 1.15): local modes (Position, Offboard) fly, global ones (Mission, RTL) do "
+        "not. Upgrade PX4 to 1.15 or later, or use profile px4-gps (fake GPS)";
+    return advice;
   }
   if (autopilot == AutopilotFamily::px4) {
     return "PX4 never reported the origin back: check that the vehicle's MAV_SYS_ID is this "
@@ -439,12 +455,14 @@ OriginGate origin_gate(bool heard, AutopilotFamily autopilot,
 }
 
 std::string withheld_origin_advice(const std::optional<FirmwareVersion>& version) {
-  return "PX4" + (version ? " " + to_string(*version) : std::string(" of unknown version")) +
-         " is not sent the origin: before 1.15, PX4 without GPS shifts its height estimate by the "
-         "origin's altitude when it takes one (32 m in PX4 1.14.3 SITL) and neither uses nor "
-         "reports it otherwise (PX4-Autopilot#17249). Local modes (Position, Offboard) need no "
-         "origin; for global ones (Mission, RTL) upgrade PX4 to 1.15 or later, or use profile "
-         "px4-gps (fake GPS)";
+  std::string advice = px4_with_version(version, " of unknown version");
+  advice +=
+      " is not sent the origin: before 1.15, PX4 without GPS shifts its height estimate by the "
+      "origin's altitude when it takes one (32 m in PX4 1.14.3 SITL) and neither uses nor "
+      "reports it otherwise (PX4-Autopilot#17249). Local modes (Position, Offboard) need no "
+      "origin; for global ones (Mission, RTL) upgrade PX4 to 1.15 or later, or use profile "
+      "px4-gps (fake GPS)";
+  return advice;
 }
 
 }  // namespace mocaplink::core
