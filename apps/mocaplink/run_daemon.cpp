@@ -409,11 +409,12 @@ void Daemon::drain() {
   fates_.clear();
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     const QueuedFrame& item = batch_[i];
-    const core::MocapFrame* next = i + 1 < batch_.size() ? &batch_[i + 1].frame : nullptr;
+    const QueuedFrame* next = i + 1 < batch_.size() ? &batch_[i + 1] : nullptr;
     auto fate = Fate::sent;
-    if (late_frames_.skip_if_superseded(item.frame, next)) {
+    if (next != nullptr &&
+        late_frames_.skip_if_superseded(item.frame, item.received, next->frame, next->received)) {
       // Newest first (core/late_frames.hpp, issue 30): the loop is behind, and a newer frame with
-      // all its bodies is already waiting; only that one is worth the work.
+      // all its bodies, which came after this one, is already waiting; only that one is worth it.
       fate = Fate::superseded;
     } else if (late_frames_.skip_if_late(
                    bridge_.frame_age(item.frame, item.received, io::host_now()))) {

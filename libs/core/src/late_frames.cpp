@@ -26,8 +26,9 @@ bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept {
   });
 }
 
-bool LateFrames::skip_if_superseded(const MocapFrame& frame, const MocapFrame* next) noexcept {
-  if (next == nullptr || !supersedes(*next, frame)) return false;
+bool LateFrames::skip_if_superseded(const MocapFrame& frame, HostTime received,
+                                    const MocapFrame& next, HostTime next_received) noexcept {
+  if (next_received - received <= kSameBurst || !supersedes(next, frame)) return false;
   ++superseded_;
   ++pending_.superseded;
   return true;

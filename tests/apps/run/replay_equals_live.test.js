@@ -67,8 +67,13 @@ async function main() {
         `3 s of live traffic\n${run.stderr}`);
       run.child.kill('SIGTERM');
     });
-  const frames = Number(live.stderr.match(/recording: (\d+) frames in/)[1]);
-  assert.ok(frames >= 720, `only ${frames} frames recorded`);
+  // Frames the live run took but did not send (superseded on a loaded machine, or late) are in
+  // the recording as comments, which the replay does not deliver.
+  const recorded = live.stderr.match(/recording: (\d+) frames in \S+(?: \((\d+) not sent, written as comments\))?/);
+  assert.ok(recorded, live.stderr);
+  const notSent = Number(recorded[2] || 0);
+  const frames = Number(recorded[1]) - notSent;
+  assert.ok(frames >= 700, `only ${frames} frames recorded as sent`);
 
   const replay = await bridge(dir, 'replay', `replay://${path.join(record, 'mocap.csv')}?speed=1`,
     [], async () => {});  // the daemon stops by itself when the recording ends
@@ -96,7 +101,10 @@ async function main() {
   const odometry = live.counts[0][ID.ODOMETRY];
   const gps = live.counts[2][ID.GPS_INPUT];
   assert.ok(odometry > 0.9 * frames && odometry <= frames, `px4: ${odometry} of ${frames} frames`);
-  assert.ok(Math.abs(gps - frames * 50 / 240) <= 2, `rover: ${gps} GPS_INPUT for ${frames} frames`);
+  // At 50 Hz a slot whose frame the live run did not send may go without a send.
+  const taken = frames + notSent;
+  assert.ok(Math.abs(gps - taken * 50 / 240) <= 2 + notSent,
+    `rover: ${gps} GPS_INPUT for ${taken} frames (${notSent} not sent)`);
   console.log(`ok: ${frames} frames; live ${JSON.stringify(live.counts)}, replay ` +
     `${JSON.stringify(replay.counts)} (${replaySkipped} frames skipped by the replay)`);
 }

@@ -94,28 +94,43 @@ TEST(LateFrames, AFrameIsSupersededOnlyByANewerOneWaitingWithAllItsBodies) {
   const auto first = frame_of(1, {"Quad1", "Quad2"});
   const auto second = frame_of(2, {"Quad1", "Quad2"});
   const auto partial = frame_of(3, {"Quad1"});
-  EXPECT_FALSE(late.skip_if_superseded(first, nullptr));  // the newest: nothing behind it
-  EXPECT_FALSE(late.skip_if_superseded(first, &partial));
+  const HostTime later = t0 + 4ms;  // a frame period at 240 Hz after the first arrived
+  EXPECT_FALSE(late.skip_if_superseded(first, t0, partial, later));
   EXPECT_EQ(late.superseded(), 0u);
-  EXPECT_TRUE(late.skip_if_superseded(first, &second));
-  EXPECT_TRUE(late.skip_if_superseded(partial, &second));
+  EXPECT_TRUE(late.skip_if_superseded(first, t0, second, later));
+  EXPECT_TRUE(late.skip_if_superseded(partial, t0, second, later));
   EXPECT_EQ(late.superseded(), 2u);
   EXPECT_EQ(late.skipped(), 0u);  // counted apart from the late ones
+}
+
+TEST(LateFrames, FramesOfOneBurstDoNotSupersedeEachOther) {
+  // Frames that arrived together (a TCP read of two frames, a VRPN round, a replay catching up)
+  // reached the loop together however idle it was: each is sent (or judged late by its capture).
+  LateFrames late;
+  const auto first = frame_of(1, {"Quad1"});
+  const auto second = frame_of(2, {"Quad1"});
+  EXPECT_FALSE(late.skip_if_superseded(first, t0, second, t0));
+  EXPECT_FALSE(late.skip_if_superseded(first, t0, second, t0 + 20us));
+  EXPECT_FALSE(late.skip_if_superseded(first, t0, second, t0 + kSameBurst));  // the limit: a burst
+  EXPECT_EQ(late.superseded(), 0u);
+  EXPECT_TRUE(late.skip_if_superseded(first, t0, second, t0 + kSameBurst + 1ns));
+  EXPECT_TRUE(late.skip_if_superseded(first, t0, second, t0 + 1ms));  // 1000 Hz, the loop behind
+  EXPECT_EQ(late.superseded(), 2u);
 }
 
 TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {
   LateFrames late;
   const auto first = frame_of(1, {"Quad1"});
   const auto second = frame_of(2, {"Quad1"});
-  ASSERT_TRUE(late.skip_if_superseded(first, &second));
+  ASSERT_TRUE(late.skip_if_superseded(first, t0, second, t0 + 4ms));
   const auto warned = late.warning(t0);  // superseded alone is warned about, at once
   ASSERT_TRUE(warned.has_value());
   EXPECT_EQ(warned->superseded, 1u);
   EXPECT_EQ(warned->skipped, 0u);
 
   // Within the period both kinds are held back, then given together.
-  ASSERT_TRUE(late.skip_if_superseded(first, &second));
-  ASSERT_TRUE(late.skip_if_superseded(first, &second));
+  ASSERT_TRUE(late.skip_if_superseded(first, t0, second, t0 + 4ms));
+  ASSERT_TRUE(late.skip_if_superseded(first, t0, second, t0 + 4ms));
   ASSERT_TRUE(late.skip_if_late(t0 + 1s, t0 + 1s + 300ms));
   EXPECT_FALSE(late.warning(t0 + 2s).has_value());
   const auto next = late.warning(t0 + kLateWarningPeriod);

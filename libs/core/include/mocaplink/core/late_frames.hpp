@@ -14,7 +14,12 @@
 // (issue 30). Working through them in order would send every pose as late as the backlog is long,
 // up to the 250 ms limit, where a machine short of CPU can still send the newest pose fresh. So a
 // frame with a newer one already waiting behind it that has a sample of each of its bodies
-// (supersedes) is superseded: not tracked, not sent, counted apart from the late ones. Skipped, not
+// (supersedes) and that arrived after it, not with it (kSameBurst: the loop was behind, not the
+// source bursting) is superseded: not tracked, not sent, counted apart from the late ones. Frames
+// of one burst (a TCP read of several frames, a VRPN round, a replay catching up) reach the loop
+// together however idle it is, so none of them supersedes another: each is sent, or judged late by
+// its capture time; otherwise a source that routinely delivers frames in pairs would lose half its
+// poses on an idle machine, and the count would blame the CPU for it. Skipped, not
 // folded into the trackers without sends: under overload the CPU is what is short, and the
 // trackers are a large part of a frame's work, so folding would spend it on poses nobody gets and
 // keep the loop behind; a tracker sees the longer step as it sees a dropped frame (its prediction
@@ -35,6 +40,10 @@ namespace mocaplink::core {
 /// The oldest a frame may be when the loop takes it (since its capture, or since its arrival where
 /// the capture cannot be placed on the host clock) and still be sent.
 inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
+/// Frames that arrived within this of each other came in one burst from their source: the loop
+/// could not have taken the first before the second came, so neither supersedes the other. Far
+/// below any mocap frame period (1 ms at 1000 Hz), far above a burst's spacing (microseconds).
+inline constexpr Duration kSameBurst = std::chrono::microseconds(500);
 /// Skipped frames are warned about at most this often (the first at once).
 inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
 
@@ -63,9 +72,11 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
-  /// True when `next`, the frame taken from the queue right after `frame` (nullptr: none is
-  /// waiting), supersedes it: the caller skips `frame`, and it is counted as superseded.
-  [[nodiscard]] bool skip_if_superseded(const MocapFrame& frame, const MocapFrame* next) noexcept;
+  /// True when `next`, the frame taken from the queue right after `frame`, supersedes it and
+  /// arrived more than kSameBurst after it (`received`, `next_received`: host arrival times): the
+  /// caller skips `frame`, counted as superseded.
+  [[nodiscard]] bool skip_if_superseded(const MocapFrame& frame, HostTime received,
+                                        const MocapFrame& next, HostTime next_received) noexcept;
   /// Frames skipped as late since construction.
   [[nodiscard]] std::uint64_t skipped() const noexcept { return skipped_; }
   /// Frames skipped as superseded since construction.
