@@ -6,7 +6,9 @@
 # and of mocaplink (frame's host capture time → datagram received, CLOCK_MONOTONIC), mocaplink's
 # ratio to the floor, the p50 of the first and of the last vehicle alone (what comes before any
 # vehicle's send, and what each vehicle adds), the CPU of both (user+sys as % of one core) and
-# mocaplink's peak RSS, and the frames mocaplink superseded (issue 30: a newer frame was waiting).
+# mocaplink's peak RSS, the frames mocaplink superseded (issue 30: a newer frame was waiting), and
+# mocaplink's CPU time per datagram received as a multiple of the floor's (both over the same wall
+# time: CPU % / datagrams received).
 # Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN FLOOR_BIN [SECONDS] [N...]
 # NICE=-10 runs every process at that priority (a shared, busy machine; needs root).
 # LOAD=compile keeps one compiler busy for the whole run (the other core loaded by a build);
@@ -93,8 +95,8 @@ measure() {
     "$wall" "$rss_kb" "${superseded:-0}"
 }
 
-echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS | superseded |"
-echo "|---:|---:|---:|---|---|---|---|---|---:|---:|---:|"
+echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS | superseded | CPU per datagram, ratio |"
+echo "|---:|---:|---:|---|---|---|---|---|---:|---:|---:|---:|"
 for n in "${counts[@]}"; do
   rows=()
   for ((rep = 0; rep < ${REPEAT:-1}; rep++)); do
@@ -117,6 +119,7 @@ for n in "${counts[@]}"; do
       `${median(reps.map((r) => lost(r, 5, 6))).toFixed(3)} % | ${ms(col(2))} / ${ms(col(3))} ms | ` +
       `${ms(col(7))} / ${ms(col(8))} ms | ${ratio(7, 2)} / ${ratio(8, 3)} | ` +
       `${ms(col(11))} / ${ms(col(12))} ms | ${ms(col(13))} / ${ms(col(14))} ms | ` +
-      `${col(4).toFixed(1)} / ${col(9).toFixed(1)} % | ${col(10).toFixed(1)} MiB | ${col(15)} |`);
+      `${col(4).toFixed(1)} / ${col(9).toFixed(1)} % | ${col(10).toFixed(1)} MiB | ${col(15)} | ` +
+      `${median(reps.map((r) => (r[9] / r[6]) / (r[4] / r[1]))).toFixed(2)} |`);
   ' "$n" "${rows[@]}"
 done
