@@ -405,8 +405,11 @@ void Daemon::start_source() {
 void Daemon::drain() {
   batch_.clear();
   queue_.drain(batch_);
+  if (batch_.empty()) return;
   using Fate = Recorder::FrameFate;
   fates_.clear();
+  // Behind (it took a frame that waited > 10 ms) or caught up (its oldest frame found it idle)?
+  late_frames_.begin_batch(batch_.front().received, io::host_now());
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     const QueuedFrame& item = batch_[i];
     const QueuedFrame* next = i + 1 < batch_.size() ? &batch_[i + 1] : nullptr;
@@ -434,6 +437,7 @@ void Daemon::drain() {
     for (std::size_t i = 0; i < batch_.size(); ++i) recorder_->on_frame(batch_[i].frame, fates_[i]);
   }
   summary_.on_frames(batch_.size());
+  late_frames_.end_batch(io::host_now());
 }
 
 void Daemon::log_rejections() {

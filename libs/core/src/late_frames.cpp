@@ -26,9 +26,14 @@ bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept {
   });
 }
 
+void LateFrames::begin_batch(HostTime first_received, HostTime now) noexcept {
+  if (!batch_done_ || first_received > *batch_done_) behind_ = false;  // it found the loop idle
+  if (now - first_received > kCatchUpAfter) behind_ = true;
+}
+
 bool LateFrames::skip_if_superseded(const MocapFrame& frame, HostTime received,
                                     const MocapFrame& next, HostTime next_received) noexcept {
-  if (next_received - received <= kSameBurst || !supersedes(next, frame)) return false;
+  if (!behind_ || next_received - received <= kSameBurst || !supersedes(next, frame)) return false;
   ++superseded_;
   ++pending_.superseded;
   return true;

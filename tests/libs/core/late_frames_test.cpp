@@ -9,6 +9,13 @@ using namespace std::chrono_literals;
 
 const HostTime t0{std::chrono::seconds(1000)};
 
+/// A LateFrames whose loop is behind: it took a frame that had waited longer than kCatchUpAfter.
+LateFrames behind_loop() {
+  LateFrames late;
+  late.begin_batch(t0 - kCatchUpAfter - 1ms, t0);
+  return late;
+}
+
 TEST(LateFrames, AFrameIsLateOnlyOnceItWaitedLongerThanTheLimit) {
   LateFrames late;
   EXPECT_FALSE(late.skip_if_late(t0, t0));
@@ -90,7 +97,7 @@ TEST(Supersedes, NotAFrameThatLacksOneOfItsBodies) {
 }
 
 TEST(LateFrames, AFrameIsSupersededOnlyByANewerOneWaitingWithAllItsBodies) {
-  LateFrames late;
+  LateFrames late = behind_loop();
   const auto first = frame_of(1, {"Quad1", "Quad2"});
   const auto second = frame_of(2, {"Quad1", "Quad2"});
   const auto partial = frame_of(3, {"Quad1"});
@@ -106,7 +113,7 @@ TEST(LateFrames, AFrameIsSupersededOnlyByANewerOneWaitingWithAllItsBodies) {
 TEST(LateFrames, FramesOfOneBurstDoNotSupersedeEachOther) {
   // Frames that arrived together (a TCP read of two frames, a VRPN round, a replay catching up)
   // reached the loop together however idle it was: each is sent (or judged late by its capture).
-  LateFrames late;
+  LateFrames late = behind_loop();
   const auto first = frame_of(1, {"Quad1"});
   const auto second = frame_of(2, {"Quad1"});
   EXPECT_FALSE(late.skip_if_superseded(first, t0, second, t0));
@@ -118,8 +125,51 @@ TEST(LateFrames, FramesOfOneBurstDoNotSupersedeEachOther) {
   EXPECT_EQ(late.superseded(), 2u);
 }
 
-TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {
+TEST(LateFrames, NothingIsSupersededWhileTheLoopIsLessThanTheLimitBehind) {
+  // A hiccup: the loop took a batch a little late, the older frame waited 9 ms, a newer one 5 ms.
+  // Both are sent, a few ms late, as on a loop that never supersedes.
   LateFrames late;
+  const auto first = frame_of(1, {"Quad1"});
+  const auto second = frame_of(2, {"Quad1"});
+  late.begin_batch(t0, t0 + 9ms);
+  EXPECT_FALSE(late.behind());
+  EXPECT_FALSE(late.skip_if_superseded(first, t0, second, t0 + 4ms));
+  late.begin_batch(t0, t0 + kCatchUpAfter);  // exactly the limit: not yet behind
+  EXPECT_FALSE(late.skip_if_superseded(first, t0, second, t0 + 4ms));
+  EXPECT_EQ(late.superseded(), 0u);
+  late.begin_batch(t0, t0 + kCatchUpAfter + 1ns);
+  EXPECT_TRUE(late.behind());
+  EXPECT_TRUE(late.skip_if_superseded(first, t0, second, t0 + 4ms));
+  EXPECT_EQ(late.superseded(), 1u);
+}
+
+TEST(LateFrames, TheLoopStaysBehindUntilAFrameFindsItIdle) {
+  LateFrames late;
+  const auto first = frame_of(1, {"Quad1"});
+  const auto second = frame_of(2, {"Quad1"});
+  late.begin_batch(t0, t0 + 20ms);  // a frame waited 20 ms: behind
+  late.end_batch(t0 + 25ms);
+  // The next batch's oldest frame came at t0 + 24 ms, while the loop was busy with the batch
+  // before: the loop is still behind, although that frame waited only 1 ms.
+  late.begin_batch(t0 + 24ms, t0 + 25ms);
+  EXPECT_TRUE(late.behind());
+  EXPECT_TRUE(late.skip_if_superseded(first, t0 + 24ms, second, t0 + 25ms));
+  late.end_batch(t0 + 28ms);
+  // This one came at t0 + 29 ms, after the loop was done at t0 + 28 ms: it found the loop idle.
+  late.begin_batch(t0 + 29ms, t0 + 29ms);
+  EXPECT_FALSE(late.behind());
+  EXPECT_FALSE(late.skip_if_superseded(first, t0 + 29ms, second, t0 + 33ms));
+  late.end_batch(t0 + 30ms);
+  // Exactly when the loop was done counts as busy (the frame was in the queue as it finished).
+  late.begin_batch(t0 + 30ms, t0 + 30ms + kCatchUpAfter + 1ms);
+  late.end_batch(t0 + 45ms);
+  late.begin_batch(t0 + 45ms, t0 + 46ms);
+  EXPECT_TRUE(late.behind());
+  EXPECT_EQ(late.superseded(), 1u);
+}
+
+TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {
+  LateFrames late = behind_loop();
   const auto first = frame_of(1, {"Quad1"});
   const auto second = frame_of(2, {"Quad1"});
   ASSERT_TRUE(late.skip_if_superseded(first, t0, second, t0 + 4ms));

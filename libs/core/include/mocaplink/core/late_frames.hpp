@@ -12,14 +12,21 @@
 // goes on with the fresher frames behind it: the poses that do leave stay young.
 // Before that limit comes into play, a loop that is behind finds several frames waiting at once
 // (issue 30). Working through them in order would send every pose as late as the backlog is long,
-// up to the 250 ms limit, where a machine short of CPU can still send the newest pose fresh. So a
-// frame with a newer one already waiting behind it that has a sample of each of its bodies
-// (supersedes) and that arrived after it, not with it (kSameBurst: the loop was behind, not the
-// source bursting) is superseded: not tracked, not sent, counted apart from the late ones. Frames
-// of one burst (a TCP read of several frames, a VRPN round, a replay catching up) reach the loop
-// together however idle it is, so none of them supersedes another: each is sent, or judged late by
-// its capture time; otherwise a source that routinely delivers frames in pairs would lose half its
-// poses on an idle machine, and the count would blame the CPU for it. Skipped, not
+// up to the 250 ms limit, where a machine short of CPU can still send the newest pose fresh. So
+// once the loop is behind — it took a frame that had waited more than kCatchUpAfter, and it has
+// not been idle since — a frame with a newer one already waiting behind it that has a sample of
+// each of its bodies (supersedes) and that arrived after it, not with it (kSameBurst: the loop was
+// behind, not the source bursting) is superseded: not tracked, not sent, counted apart from the
+// late ones. The loop is caught up again when a frame finds it idle (arrives after the loop
+// finished the batch before). A loop that is only a frame or two late for a moment (a scheduling
+// hiccup, one slow frame, a machine near but not past its limit) sends every frame, a few ms late,
+// as it did before superseding: what is lost is only what the CPU cannot do, not what a hiccup
+// delayed. Once behind, it stays so until it idles, so a saturated loop keeps sending only the
+// newest pose however small its backlog of the moment is.
+// Frames of one burst (a TCP read of several frames, a VRPN round, a replay catching up) reach the
+// loop together however idle it is, so none of them supersedes another: each is sent, or judged
+// late by its capture time; otherwise a source that routinely delivers frames in pairs would lose
+// half its poses on a busy machine, and the count would blame the CPU for it. Skipped, not
 // folded into the trackers without sends: under overload the CPU is what is short, and the
 // trackers are a large part of a frame's work, so folding would spend it on poses nobody gets and
 // keep the loop behind; a tracker sees the longer step as it sees a dropped frame (its prediction
@@ -44,6 +51,11 @@ inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
 /// could not have taken the first before the second came, so neither supersedes the other. Far
 /// below any mocap frame period (1 ms at 1000 Hz), far above a burst's spacing (microseconds).
 inline constexpr Duration kSameBurst = std::chrono::microseconds(500);
+/// The loop is behind, and supersedes frames, once it takes a frame that waited longer than this
+/// for it (and until a frame finds it idle). Above the few ms a busy machine that keeps up delays a
+/// frame now and then (docs/performance.md: p99 under 7 ms at 500 vehicles on 2 cores), below the
+/// 20-50 ms a vision delay is usually set to.
+inline constexpr Duration kCatchUpAfter = std::chrono::milliseconds(10);
 /// Skipped frames are warned about at most this often (the first at once).
 inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
 
@@ -72,9 +84,17 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
-  /// True when `next`, the frame taken from the queue right after `frame`, supersedes it and
-  /// arrived more than kSameBurst after it (`received`, `next_received`: host arrival times): the
-  /// caller skips `frame`, counted as superseded.
+  /// The loop takes a batch at `now`, whose oldest frame arrived at `first_received`: it is behind
+  /// from now on if that frame waited longer than kCatchUpAfter, and caught up if that frame
+  /// arrived after the previous batch was done (end_batch), when the loop was idle.
+  void begin_batch(HostTime first_received, HostTime now) noexcept;
+  /// The loop is done with the batch (sent, skipped, recorded) at `now`.
+  void end_batch(HostTime now) noexcept { batch_done_ = now; }
+  /// Whether the loop is behind (begin_batch): only then are frames superseded.
+  [[nodiscard]] bool behind() const noexcept { return behind_; }
+  /// True when the loop is behind and `next`, the frame taken from the queue right after `frame`,
+  /// supersedes it and arrived more than kSameBurst after it (`received`, `next_received`: host
+  /// arrival times): the caller skips `frame`, counted as superseded.
   [[nodiscard]] bool skip_if_superseded(const MocapFrame& frame, HostTime received,
                                         const MocapFrame& next, HostTime next_received) noexcept;
   /// Frames skipped as late since construction.
@@ -90,8 +110,10 @@ class LateFrames {
   Duration max_wait_;
   std::uint64_t skipped_ = 0;
   std::uint64_t superseded_ = 0;
-  LateWarning pending_;             // since the previous warning
-  std::optional<HostTime> warned_;  // when the previous warning was given
+  LateWarning pending_;                 // since the previous warning
+  std::optional<HostTime> warned_;      // when the previous warning was given
+  std::optional<HostTime> batch_done_;  // when the loop was done with its previous batch
+  bool behind_ = false;                 // since a frame waited > kCatchUpAfter; until one idles
 };
 
 }  // namespace mocaplink::core
