@@ -58,6 +58,10 @@ floor_args=()
 measure() {
   local n=$1
   shift
+  # The previous receivers' "ready" must not be read as these ones': under load the redirection
+  # below can run after the wait loop's first grep, which then found the old file, and the bridge
+  # read a c.toml the new receivers were still writing ("mocap.source: missing required key").
+  rm -f "$work/recv.out"
   "${prio[@]}" "$receivers" --vehicles "$n" --config "$work/c.toml" --poll-ms "${POLL_MS:-2}" \
     --sockets "${SOCKETS:-each}" --mocap-hz "${RATE_HZ:-240}" --rate-hz "${RATE_HZ:-240}" \
     > "$work/recv.out" &
