@@ -66,7 +66,8 @@ std::size_t max_send_threads_logged() {
 
 struct QueuedFrame {
   core::MocapFrame frame;
-  core::HostTime received;
+  core::HostTime received;  // when the source had it (its age, its spacing from the next)
+  core::HostTime queued;    // when it was handed to the loop (how late the loop is)
 };
 
 class Daemon {
@@ -376,7 +377,7 @@ void Daemon::destroy_retired(core::HostTime now) {
 void Daemon::start_source() {
   source_->start(
       [this](core::MocapFrame frame, core::HostTime received) {
-        if (queue_.push(QueuedFrame{std::move(frame), received})) {
+        if (queue_.push(QueuedFrame{std::move(frame), received, io::host_now()})) {
           asio::post(loop_, [this] { drain(); });
         }
       },
@@ -409,7 +410,9 @@ void Daemon::drain() {
   using Fate = Recorder::FrameFate;
   fates_.clear();
   // Behind (it took a frame that waited > 10 ms) or caught up (its oldest frame found it idle)?
-  late_frames_.begin_batch(batch_.front().received, io::host_now());
+  // From the hand-over, not the arrival: a VRPN frame is complete only a settle time after its
+  // round's last report arrived (docs/sources.md), which is the source's wait, not the loop's.
+  late_frames_.begin_batch(batch_.front().queued, io::host_now());
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     const QueuedFrame& item = batch_[i];
     const QueuedFrame* next = i + 1 < batch_.size() ? &batch_[i + 1] : nullptr;

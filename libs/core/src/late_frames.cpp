@@ -26,9 +26,9 @@ bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept {
   });
 }
 
-void LateFrames::begin_batch(HostTime first_received, HostTime now) noexcept {
-  if (!batch_done_ || first_received > *batch_done_) behind_ = false;  // it found the loop idle
-  if (now - first_received > kCatchUpAfter) behind_ = true;
+void LateFrames::begin_batch(HostTime first_queued, HostTime now) noexcept {
+  if (!batch_done_ || first_queued > *batch_done_) behind_ = false;  // it found the loop idle
+  if (now - first_queued > kCatchUpAfter) behind_ = true;
 }
 
 bool LateFrames::skip_if_superseded(const MocapFrame& frame, HostTime received,

@@ -2,10 +2,10 @@
 // --stall 1.5:MS`) holds its frames back for MS ms, as a stalled network would, then lets them out
 // in one burst with the frames after the stall, as a TCP connection delivers its backlog. The
 // burst arrives fresh but was captured up to MS ms before: `mocaplink run` must judge its age from
-// the capture, skip and count the frames too old to send, and mark them in the recording. A burst
-// that reaches the loop as one batch has only its newest frame sent, the older ones superseded
-// (issue 30); frames that come one batch at a time are judged late; either way they are skipped,
-// counted and marked.
+// the capture, skip and count the frames too old to send, and mark them in the recording. The
+// frames of a burst never supersede each other (core::kSameBurst), so each is judged late by its
+// capture time; frames the loop was more than 10 ms late for are superseded (issue 30); either way
+// they are skipped, counted and marked.
 //
 // The vehicle checks what reaches it: every ODOMETRY's time_usec is the pose's capture time on
 // the daemon's steady clock (docs/messages.md "Time"), the same CLOCK_MONOTONIC as this process's

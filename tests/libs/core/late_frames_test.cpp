@@ -165,6 +165,14 @@ TEST(LateFrames, TheLoopStaysBehindUntilAFrameFindsItIdle) {
   late.end_batch(t0 + 45ms);
   late.begin_batch(t0 + 45ms, t0 + 46ms);
   EXPECT_TRUE(late.behind());
+  late.end_batch(t0 + 47ms);
+  late.begin_batch(t0 + 48ms, t0 + 48ms);  // idle: caught up
+  EXPECT_FALSE(late.behind());
+  late.end_batch(t0 + 49ms);
+  // Handed over after the loop was done, so it found the loop idle, but the loop then took 15 ms
+  // to get to it (other work: a tick, the dashboard): late is late, the loop is behind.
+  late.begin_batch(t0 + 50ms, t0 + 65ms);
+  EXPECT_TRUE(late.behind());
   EXPECT_EQ(late.superseded(), 1u);
 }
 

@@ -13,26 +13,26 @@
 // Before that limit comes into play, a loop that is behind finds several frames waiting at once
 // (issue 30). Working through them in order would send every pose as late as the backlog is long,
 // up to the 250 ms limit, where a machine short of CPU can still send the newest pose fresh. So
-// once the loop is behind — it took a frame that had waited more than kCatchUpAfter, and it has
-// not been idle since — a frame with a newer one already waiting behind it that has a sample of
-// each of its bodies (supersedes) and that arrived after it, not with it (kSameBurst: the loop was
-// behind, not the source bursting) is superseded: not tracked, not sent, counted apart from the
-// late ones. The loop is caught up again when a frame finds it idle (arrives after the loop
-// finished the batch before). A loop that is only a frame or two late for a moment (a scheduling
-// hiccup, one slow frame, a machine near but not past its limit) sends every frame, a few ms late,
-// as it did before superseding: what is lost is only what the CPU cannot do, not what a hiccup
-// delayed. Once behind, it stays so until it idles, so a saturated loop keeps sending only the
-// newest pose however small its backlog of the moment is.
-// Frames of one burst (a TCP read of several frames, a VRPN round, a replay catching up) reach the
-// loop together however idle it is, so none of them supersedes another: each is sent, or judged
-// late by its capture time; otherwise a source that routinely delivers frames in pairs would lose
-// half its poses on a busy machine, and the count would blame the CPU for it. Skipped, not
-// folded into the trackers without sends: under overload the CPU is what is short, and the
-// trackers are a large part of a frame's work, so folding would spend it on poses nobody gets and
-// keep the loop behind; a tracker sees the longer step as it sees a dropped frame (its prediction
-// and gate widen with the step); and a replay, which skips what the run did not send, then feeds
-// its trackers exactly what the run's had (docs/daemon.md).
-// Pure; time is passed in; one owner (the event loop).
+// once the loop is behind — it took a frame that had waited more than kCatchUpAfter since its
+// source handed it over, and it has not been idle since — a frame with a newer one already waiting
+// behind it that has a sample of each of its bodies (supersedes) and that arrived after it, not
+// with it (kSameBurst: the loop was behind, not the source bursting) is superseded: not tracked,
+// not sent, counted apart from the late ones. The loop is caught up again when a frame finds it
+// idle (is handed over after the loop finished the batch before). A loop that is late by less than
+// kCatchUpAfter for a moment (a scheduling hiccup, one slow frame, a machine near but not past its
+// limit; at 240 Hz two frame periods, at 100 Hz only one) sends every frame, a few ms late, as it
+// did before superseding: what is lost is only what the CPU cannot do, not what a hiccup delayed.
+// Once behind, it stays so until it idles, so a saturated loop keeps sending only the newest pose
+// however small its backlog of the moment is. Frames of one burst (a TCP read of several frames, a
+// VRPN round, a replay catching up) reach the loop together however idle it is, so none of them
+// supersedes another: each is sent, or judged late by its capture time; otherwise a source that
+// routinely delivers frames in pairs would lose half its poses on a busy machine, and the count
+// would blame the CPU for it. Skipped, not folded into the trackers without sends: under overload
+// the CPU is what is short, and the trackers are a large part of a frame's work, so folding would
+// spend it on poses nobody gets and keep the loop behind; a tracker sees the longer step as it sees
+// a dropped frame (its prediction and gate widen with the step); and a replay, which skips what the
+// run did not send, then feeds its trackers exactly what the run's had (docs/daemon.md). Pure; time
+// is passed in; one owner (the event loop).
 #pragma once
 
 #include <chrono>
@@ -53,8 +53,8 @@ inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
 inline constexpr Duration kSameBurst = std::chrono::microseconds(500);
 /// The loop is behind, and supersedes frames, once it takes a frame that waited longer than this
 /// for it (and until a frame finds it idle). Above the few ms a busy machine that keeps up delays a
-/// frame now and then (docs/performance.md: p99 under 7 ms at 500 vehicles on 2 cores), below the
-/// 20-50 ms a vision delay is usually set to.
+/// frame now and then (docs/performance.md: at 500 vehicles on 2 cores the poses' p99, queue and
+/// sends together, is 5-7 ms), below the 20-50 ms a vision delay is usually set to.
 inline constexpr Duration kCatchUpAfter = std::chrono::milliseconds(10);
 /// Skipped frames are warned about at most this often (the first at once).
 inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
@@ -84,10 +84,10 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
-  /// The loop takes a batch at `now`, whose oldest frame arrived at `first_received`: it is behind
-  /// from now on if that frame waited longer than kCatchUpAfter, and caught up if that frame
-  /// arrived after the previous batch was done (end_batch), when the loop was idle.
-  void begin_batch(HostTime first_received, HostTime now) noexcept;
+  /// The loop takes a batch at `now`, whose oldest frame its source handed over at `first_queued`:
+  /// it is behind from now on if that frame waited longer than kCatchUpAfter, and caught up if
+  /// that frame was handed over after the previous batch was done (end_batch): the loop was idle.
+  void begin_batch(HostTime first_queued, HostTime now) noexcept;
   /// The loop is done with the batch (sent, skipped, recorded) at `now`.
   void end_batch(HostTime now) noexcept { batch_done_ = now; }
   /// Whether the loop is behind (begin_batch): only then are frames superseded.
