@@ -160,9 +160,11 @@ TEST(LateFrames, TheLoopStaysBehindUntilAFrameFindsItIdle) {
   EXPECT_FALSE(late.behind());
   EXPECT_FALSE(late.skip_if_superseded(first, t0 + 29ms, second, t0 + 33ms));
   late.end_batch(t0 + 30ms);
-  // Exactly when the loop was done counts as busy (the frame was in the queue as it finished).
-  late.begin_batch(t0 + 30ms, t0 + 30ms + kCatchUpAfter + 1ms);
+  late.begin_batch(t0 + 30ms, t0 + 30ms + kCatchUpAfter + 1ms);  // waited 11 ms: behind again
+  EXPECT_TRUE(late.behind());
   late.end_batch(t0 + 45ms);
+  // Handed over exactly when the loop was done counts as busy (it was in the queue as the loop
+  // finished): still behind, although it waited only 1 ms.
   late.begin_batch(t0 + 45ms, t0 + 46ms);
   EXPECT_TRUE(late.behind());
   late.end_batch(t0 + 47ms);

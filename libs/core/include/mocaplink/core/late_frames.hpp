@@ -31,8 +31,8 @@
 // the CPU is what is short, and the trackers are a large part of a frame's work, so folding would
 // spend it on poses nobody gets and keep the loop behind; a tracker sees the longer step as it sees
 // a dropped frame (its prediction and gate widen with the step); and a replay, which skips what the
-// run did not send, then feeds its trackers exactly what the run's had (docs/daemon.md). Pure; time
-// is passed in; one owner (the event loop).
+// run did not send, then feeds its trackers exactly what the run's had (docs/daemon.md).
+// Pure; time is passed in; one owner (the event loop).
 #pragma once
 
 #include <chrono>
