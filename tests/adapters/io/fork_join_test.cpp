@@ -10,6 +10,10 @@
 #include <thread>
 #include <vector>
 
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
 #include <gtest/gtest.h>
 
 #include "mocaplink/io/send_threads.hpp"
@@ -117,6 +121,37 @@ TEST(SendThreads, OneThreadPerHundredVehiclesUpToTheMaximum) {
   EXPECT_EQ(send_threads_for(1000, 0), 1u);
 }
 
+#if defined(__linux__)
+/// Restricts the calling thread to the first `n` CPUs of its affinity (as taskset or systemd's
+/// CPUAffinity= would, for the process) for the object's lifetime; `ok` is false when it has fewer.
+class ScopedAffinity {
+ public:
+  explicit ScopedAffinity(int n) {
+    CPU_ZERO(&saved_);
+    if (sched_getaffinity(0, sizeof saved_, &saved_) != 0 || CPU_COUNT(&saved_) < n) return;
+    cpu_set_t fewer;
+    CPU_ZERO(&fewer);
+    int taken = 0;
+    for (std::size_t cpu = 0; cpu < CPU_SETSIZE && taken < n; ++cpu) {
+      if (CPU_ISSET(cpu, &saved_)) {
+        CPU_SET(cpu, &fewer);
+        ++taken;
+      }
+    }
+    ok = sched_setaffinity(0, sizeof fewer, &fewer) == 0;
+  }
+  ~ScopedAffinity() {
+    if (ok) sched_setaffinity(0, sizeof saved_, &saved_);
+  }
+  ScopedAffinity(const ScopedAffinity&) = delete;
+  ScopedAffinity& operator=(const ScopedAffinity&) = delete;
+  bool ok = false;
+
+ private:
+  cpu_set_t saved_;
+};
+#endif
+
 TEST(SendThreads, MaximumFromTheEnvironmentOrTheCores) {
   using testing_support::ScopedEnv;
   std::string warning;
@@ -125,8 +160,15 @@ TEST(SendThreads, MaximumFromTheEnvironmentOrTheCores) {
     EXPECT_EQ(max_send_threads(&warning), 3u);
     EXPECT_EQ(warning, "");
   }
+#if defined(__linux__)
+  // The cores it may run on, not the machine's: one when restricted to one (taskset -c 0).
+  const ScopedAffinity one_core(1);
+  ASSERT_TRUE(one_core.ok);
+  const std::size_t by_cores = 1;
+#else
   const auto cores = std::max(1U, std::thread::hardware_concurrency());
   const std::size_t by_cores = std::min<std::size_t>(cores, kMaxSendThreads);
+#endif
   {
     const ScopedEnv env("MOCAPLINK_SEND_THREADS", nullptr);
     EXPECT_EQ(max_send_threads(&warning), by_cores);
@@ -140,6 +182,15 @@ TEST(SendThreads, MaximumFromTheEnvironmentOrTheCores) {
                            " ignored: expected a whole number from 1 to 64");
   }
 }
+
+#if defined(__linux__)
+TEST(SendThreads, AsManyAsTheCoresTheProcessMayRunOn) {
+  const testing_support::ScopedEnv env("MOCAPLINK_SEND_THREADS", nullptr);
+  const ScopedAffinity two_cores(2);
+  if (!two_cores.ok) GTEST_SKIP() << "fewer than two CPUs to run on";
+  EXPECT_EQ(max_send_threads(nullptr), 2u);
+}
+#endif
 
 }  // namespace
 }  // namespace mocaplink::io

@@ -4,8 +4,8 @@
 // Sending is most of what the bridge does per frame: on loopback, each UDP send also delivers the
 // datagram, about 2–6 µs on the team machine (docs/performance.md), so 1000 vehicles at 240 Hz
 // need more than one core. Waking a worker costs tens of µs, more than a few sends, so a frame is
-// sent by one more thread per kVehiclesPerSendThread vehicles, up to the machine's cores (at most
-// kMaxSendThreads), and small fleets stay on the loop's thread alone.
+// sent by one more thread per kVehiclesPerSendThread vehicles, up to the cores the process may
+// run on (at most kMaxSendThreads), and small fleets stay on the loop's thread alone.
 #pragma once
 
 #include <cstddef>
@@ -27,8 +27,9 @@ inline constexpr std::size_t kMaxSendThreads = 4;
 }
 
 /// The most threads that may send: MOCAPLINK_SEND_THREADS when set (1–64; 1 keeps every send on
-/// the loop's thread), else the machine's cores, at most kMaxSendThreads. A malformed value is
-/// ignored with `warning` set to say so.
+/// the loop's thread), else the cores the process may run on (on Linux its CPU affinity: taskset,
+/// systemd's CPUAffinity=, a cpuset; elsewhere the machine's cores), at most kMaxSendThreads. A
+/// malformed value is ignored with `warning` set to say so.
 [[nodiscard]] std::size_t max_send_threads(std::string* warning);
 
 }  // namespace mocaplink::io
