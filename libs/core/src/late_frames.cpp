@@ -26,9 +26,26 @@ bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept {
   });
 }
 
+void LateFrames::handed_over(HostTime queued) noexcept {
+  if (last_handed_over_) {
+    const Duration gap = queued - *last_handed_over_;
+    if (gap >= Duration::zero() && gap <= kMaxFrameWait) {
+      // A running mean with weight 1/16: a source that hands frames over in pairs (0 and two
+      // periods apart) averages to its period.
+      period_ = period_ ? *period_ + (gap - *period_) / 16 : gap;
+    }
+  }
+  last_handed_over_ = queued;
+}
+
+Duration LateFrames::catch_up_after() const noexcept {
+  if (!period_) return kCatchUpAfter;
+  return std::clamp(kCatchUpPeriods * *period_, kCatchUpAfter, kMaxCatchUpAfter);
+}
+
 void LateFrames::begin_batch(HostTime first_queued, HostTime now) noexcept {
   if (!batch_done_ || first_queued > *batch_done_) behind_ = false;  // it found the loop idle
-  if (now - first_queued > kCatchUpAfter) behind_ = true;
+  if (now - first_queued > catch_up_after()) behind_ = true;
 }
 
 bool LateFrames::skip_if_superseded(const MocapFrame& frame, HostTime received,

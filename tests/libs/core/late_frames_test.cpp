@@ -178,6 +178,64 @@ TEST(LateFrames, TheLoopStaysBehindUntilAFrameFindsItIdle) {
   EXPECT_EQ(late.superseded(), 1u);
 }
 
+/// A LateFrames that was handed `n` frames `period` apart, the last at `last`.
+LateFrames handed_over_every(Duration period, int n, HostTime last) {
+  LateFrames late;
+  for (int i = n - 1; i >= 0; --i) late.handed_over(last - i * period);
+  return late;
+}
+
+TEST(LateFrames, BelowTwoHundredHertzTheLoopIsBehindOnlyOnceAFrameWaitedTwoPeriods) {
+  // 240 Hz: two periods are 8.3 ms, so the limit stays 10 ms.
+  LateFrames fast = handed_over_every(std::chrono::microseconds(4167), 100, t0);
+  EXPECT_EQ(fast.catch_up_after(), kCatchUpAfter);
+  fast.begin_batch(t0, t0 + 11ms);
+  EXPECT_TRUE(fast.behind());
+
+  // 100 Hz: a loop one frame late (a frame waited 15 ms) is not behind; two frames late is.
+  LateFrames slow = handed_over_every(10ms, 100, t0);
+  EXPECT_EQ(slow.catch_up_after(), 20ms);
+  slow.begin_batch(t0, t0 + 15ms);
+  EXPECT_FALSE(slow.behind());
+  EXPECT_FALSE(
+      slow.skip_if_superseded(frame_of(1, {"Quad1"}), t0, frame_of(2, {"Quad1"}), t0 + 10ms));
+  slow.begin_batch(t0, t0 + 20ms);  // exactly two periods: not yet
+  EXPECT_FALSE(slow.behind());
+  slow.begin_batch(t0, t0 + 20ms + 1ns);
+  EXPECT_TRUE(slow.behind());
+
+  // 10 Hz would be 200 ms: the limit stops at kMaxCatchUpAfter.
+  EXPECT_EQ(handed_over_every(100ms, 100, t0).catch_up_after(), kMaxCatchUpAfter);
+}
+
+TEST(LateFrames, ThePeriodIsTheMeanSpacingOfTheHandOvers) {
+  // Before any spacing is known, the limit is kCatchUpAfter.
+  LateFrames late;
+  EXPECT_EQ(late.catch_up_after(), kCatchUpAfter);
+  late.handed_over(t0);
+  EXPECT_EQ(late.catch_up_after(), kCatchUpAfter);
+
+  // 100 Hz handed over in pairs (a TCP read of two frames every 20 ms): the mean spacing is
+  // 10 ms, so the limit is 20 ms, within a fraction of a ms (a mean over ~16 gaps).
+  LateFrames pairs;
+  for (int i = 0; i < 200; ++i) {
+    pairs.handed_over(t0 + i * 20ms);
+    pairs.handed_over(t0 + i * 20ms);
+  }
+  const double limit_ms = std::chrono::duration<double, std::milli>(pairs.catch_up_after()).count();
+  EXPECT_NEAR(limit_ms, 20.0, 1.5);
+
+  // A pause of the source (one second without frames) is not a frame period.
+  LateFrames paused = handed_over_every(10ms, 100, t0);
+  paused.handed_over(t0 + 1s);
+  EXPECT_EQ(paused.catch_up_after(), 20ms);
+
+  // The rate rises from 100 to 240 Hz: within a few dozen frames the limit is 10 ms again.
+  LateFrames faster = handed_over_every(10ms, 100, t0);
+  for (int i = 1; i <= 60; ++i) faster.handed_over(t0 + i * std::chrono::microseconds(4167));
+  EXPECT_EQ(faster.catch_up_after(), kCatchUpAfter);
+}
+
 TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {
   LateFrames late = behind_loop();
   const auto first = frame_of(1, {"Quad1"});

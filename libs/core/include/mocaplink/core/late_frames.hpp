@@ -13,15 +13,18 @@
 // Before that limit comes into play, a loop that is behind finds several frames waiting at once
 // (issue 30). Working through them in order would send every pose as late as the backlog is long,
 // up to the 250 ms limit, where a machine short of CPU can still send the newest pose fresh. So
-// once the loop is behind — it took a frame that had waited more than kCatchUpAfter since its
+// once the loop is behind — it took a frame that had waited more than catch_up_after() since its
 // source handed it over, and it has not been idle since — a frame with a newer one already waiting
 // behind it that has a sample of each of its bodies (supersedes) and that arrived after it, not
 // with it (kSameBurst: the loop was behind, not the source bursting) is superseded: not tracked,
 // not sent, counted apart from the late ones. The loop is caught up again when a frame finds it
 // idle (is handed over after the loop finished the batch before). A loop that is late by less than
-// kCatchUpAfter for a moment (a scheduling hiccup, one slow frame, a machine near but not past its
-// limit; at 240 Hz two frame periods, at 100 Hz only one) sends every frame, a few ms late, as it
-// did before superseding: what is lost is only what the CPU cannot do, not what a hiccup delayed.
+// that limit for a moment (a scheduling hiccup, one slow frame, a machine near but not past its
+// limit) sends every frame, a few ms late, as it did before superseding: what is lost is only what
+// the CPU cannot do, not what a hiccup delayed. The limit is kCatchUpAfter, or kCatchUpPeriods
+// frame periods where that is longer (below 200 Hz; at 100 Hz 10 ms is a single period, and a loop
+// one frame late would supersede the frame it was late with), at most kMaxCatchUpAfter; the
+// period is the mean spacing of the hand-overs, which the loop reports (handed_over).
 // Once behind, it stays so until it idles, so a saturated loop keeps sending only the newest pose
 // however small its backlog of the moment is. Frames of one burst (a TCP read of several frames, a
 // VRPN round, a replay catching up) reach the loop together however idle it is, so none of them
@@ -52,10 +55,17 @@ inline constexpr Duration kMaxFrameWait = std::chrono::milliseconds(250);
 /// below any mocap frame period (1 ms at 1000 Hz), far above a burst's spacing (microseconds).
 inline constexpr Duration kSameBurst = std::chrono::microseconds(500);
 /// The loop is behind, and supersedes frames, once it takes a frame that waited longer than this
-/// for it (and until a frame finds it idle). Above the few ms a busy machine that keeps up delays a
+/// for it, or kCatchUpPeriods frame periods where that is longer (LateFrames::catch_up_after), and
+/// until a frame finds it idle. Above the few ms a busy machine that keeps up delays a
 /// frame now and then (docs/performance.md: at 500 vehicles on 2 cores the poses' p99, queue and
 /// sends together, is 5-7 ms), below the 20-50 ms a vision delay is usually set to.
 inline constexpr Duration kCatchUpAfter = std::chrono::milliseconds(10);
+/// Below 200 Hz the limit is this many frame periods instead (20 ms at 100 Hz), so that a loop
+/// one frame late for a moment is not behind at any rate.
+inline constexpr int kCatchUpPeriods = 2;
+/// The most the limit grows to at low rates (50 ms is reached at 40 Hz): the upper end of the
+/// vision delays autopilots are usually set to, and a fifth of kMaxFrameWait.
+inline constexpr Duration kMaxCatchUpAfter = std::chrono::milliseconds(50);
 /// Skipped frames are warned about at most this often (the first at once).
 inline constexpr Duration kLateWarningPeriod = std::chrono::seconds(10);
 
@@ -84,8 +94,15 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
+  /// Its source handed a frame over at `queued` (host time), in order: the loop reports each one
+  /// it takes, before begin_batch. Their mean spacing (an average over about 16 frames; a gap
+  /// longer than kMaxFrameWait is a pause of the source, not its period) is the frame period.
+  void handed_over(HostTime queued) noexcept;
+  /// How long a frame may wait for the loop before the loop counts as behind: kCatchUpAfter, or
+  /// kCatchUpPeriods frame periods if that is longer, at most kMaxCatchUpAfter.
+  [[nodiscard]] Duration catch_up_after() const noexcept;
   /// The loop takes a batch at `now`, whose oldest frame its source handed over at `first_queued`:
-  /// it is behind from now on if that frame waited longer than kCatchUpAfter, and caught up if
+  /// it is behind from now on if that frame waited longer than catch_up_after(), and caught up if
   /// that frame was handed over after the previous batch was done (end_batch): the loop was idle.
   void begin_batch(HostTime first_queued, HostTime now) noexcept;
   /// The loop is done with the batch (sent, skipped, recorded) at `now`.
@@ -113,7 +130,9 @@ class LateFrames {
   LateWarning pending_;                 // since the previous warning
   std::optional<HostTime> warned_;      // when the previous warning was given
   std::optional<HostTime> batch_done_;  // when the loop was done with its previous batch
-  bool behind_ = false;                 // since a frame waited > kCatchUpAfter; until one idles
+  bool behind_ = false;                 // since a frame waited > catch_up_after(); until one idles
+  std::optional<HostTime> last_handed_over_;  // the newest frame's hand-over (handed_over)
+  std::optional<Duration> period_;            // mean spacing of the hand-overs
 };
 
 }  // namespace mocaplink::core
