@@ -178,11 +178,26 @@ TEST(LateFrames, TheLoopStaysBehindUntilAFrameFindsItIdle) {
   EXPECT_EQ(late.superseded(), 1u);
 }
 
+/// Hands frames over to a LateFrames as a source would: each a new frame (the next number, its
+/// capture time the hand-over's), unless `again` (a frame handed over a second time).
+struct Feeder {
+  LateFrames late;
+  std::uint64_t number = 0;
+  MocapFrame frame;
+  void hand_over(HostTime queued, bool again = false) {
+    if (!again) {
+      frame.frame_number = ++number;
+      frame.capture_time = source_time_from_ns(queued.time_since_epoch().count());
+    }
+    late.handed_over(frame, queued);
+  }
+};
+
 /// A LateFrames that was handed `n` frames `period` apart, the last at `last`.
 LateFrames handed_over_every(Duration period, int n, HostTime last) {
-  LateFrames late;
-  for (int i = n - 1; i >= 0; --i) late.handed_over(last - i * period);
-  return late;
+  Feeder feed;
+  for (int i = n - 1; i >= 0; --i) feed.hand_over(last - i * period);
+  return feed.late;
 }
 
 TEST(LateFrames, BelowTwoHundredHertzTheLoopIsBehindOnlyOnceAFrameWaitedTwoPeriods) {
@@ -210,30 +225,64 @@ TEST(LateFrames, BelowTwoHundredHertzTheLoopIsBehindOnlyOnceAFrameWaitedTwoPerio
 
 TEST(LateFrames, ThePeriodIsTheMeanSpacingOfTheHandOvers) {
   // Before any spacing is known, the limit is kCatchUpAfter.
-  LateFrames late;
-  EXPECT_EQ(late.catch_up_after(), kCatchUpAfter);
-  late.handed_over(t0);
-  EXPECT_EQ(late.catch_up_after(), kCatchUpAfter);
+  Feeder first;
+  EXPECT_EQ(first.late.catch_up_after(), kCatchUpAfter);
+  first.hand_over(t0);
+  EXPECT_EQ(first.late.catch_up_after(), kCatchUpAfter);
+
+  // A running mean with weight 1/16: at 10 ms, one gap of 26 ms makes the period 11 ms.
+  Feeder step;
+  for (int i = 0; i < 100; ++i) step.hand_over(t0 + i * 10ms);
+  step.hand_over(t0 + 99 * 10ms + 26ms);
+  EXPECT_EQ(step.late.catch_up_after(), 22ms);
 
   // 100 Hz handed over in pairs (a TCP read of two frames every 20 ms): the mean spacing is
-  // 10 ms, so the limit is 20 ms, within a fraction of a ms (a mean over ~16 gaps).
-  LateFrames pairs;
+  // 10 ms, so the limit is 20 ms, within the running mean's swing (a few %).
+  Feeder pairs;
   for (int i = 0; i < 200; ++i) {
-    pairs.handed_over(t0 + i * 20ms);
-    pairs.handed_over(t0 + i * 20ms);
+    pairs.hand_over(t0 + i * 20ms);
+    pairs.hand_over(t0 + i * 20ms);
   }
-  const double limit_ms = std::chrono::duration<double, std::milli>(pairs.catch_up_after()).count();
+  const double limit_ms =
+      std::chrono::duration<double, std::milli>(pairs.late.catch_up_after()).count();
   EXPECT_NEAR(limit_ms, 20.0, 1.5);
 
-  // A pause of the source (one second without frames) is not a frame period.
-  LateFrames paused = handed_over_every(10ms, 100, t0);
-  paused.handed_over(t0 + 1s);
-  EXPECT_EQ(paused.catch_up_after(), 20ms);
+  // A pause of the source (longer than kMaxFrameWait without frames) is not a frame period; a
+  // gap of exactly kMaxFrameWait is one (a 4 Hz source).
+  Feeder paused;
+  for (int i = 0; i < 100; ++i) paused.hand_over(t0 + i * 10ms);
+  paused.hand_over(t0 + 99 * 10ms + kMaxFrameWait + 1ns);
+  EXPECT_EQ(paused.late.catch_up_after(), 20ms);
+  Feeder slow;
+  for (int i = 0; i < 100; ++i) slow.hand_over(t0 + i * 10ms);
+  slow.hand_over(t0 + 99 * 10ms + kMaxFrameWait);
+  EXPECT_EQ(slow.late.catch_up_after(), 20ms + 2 * (kMaxFrameWait - 10ms) / 16);
 
   // The rate rises from 100 to 240 Hz: within a few dozen frames the limit is 10 ms again.
-  LateFrames faster = handed_over_every(10ms, 100, t0);
-  for (int i = 1; i <= 60; ++i) faster.handed_over(t0 + i * std::chrono::microseconds(4167));
-  EXPECT_EQ(faster.catch_up_after(), kCatchUpAfter);
+  Feeder faster;
+  for (int i = 0; i < 100; ++i) faster.hand_over(t0 + i * 10ms);
+  for (int i = 1; i <= 60; ++i) faster.hand_over(t0 + 990ms + i * std::chrono::microseconds(4167));
+  EXPECT_EQ(faster.late.catch_up_after(), kCatchUpAfter);
+}
+
+TEST(LateFrames, AFrameHandedOverAgainIsNotANewFrame) {
+  // A Vicon frame split over three datagrams comes three times, microseconds apart, with the same
+  // number and capture time: the period stays the frames' 10 ms, not a third of it.
+  Feeder split;
+  for (int i = 0; i < 100; ++i) {
+    split.hand_over(t0 + i * 10ms);
+    split.hand_over(t0 + i * 10ms + 50us, true);
+    split.hand_over(t0 + i * 10ms + 100us, true);
+  }
+  EXPECT_EQ(split.late.catch_up_after(), 20ms);
+}
+
+TEST(LateFrames, AHandOverOutOfOrderIsLeftOut) {
+  Feeder feed;
+  for (int i = 0; i < 100; ++i) feed.hand_over(t0 + i * 10ms);
+  feed.hand_over(t0 + 980ms);   // before the newest (t0 + 990 ms): left out, the newest stays
+  feed.hand_over(t0 + 1000ms);  // 10 ms after the newest, not 20 after the one out of order
+  EXPECT_EQ(feed.late.catch_up_after(), 20ms);
 }
 
 TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {

@@ -24,7 +24,7 @@
 // the CPU cannot do, not what a hiccup delayed. The limit is kCatchUpAfter, or kCatchUpPeriods
 // frame periods where that is longer (below 200 Hz; at 100 Hz 10 ms is a single period, and a loop
 // one frame late would supersede the frame it was late with), at most kMaxCatchUpAfter; the
-// period is the mean spacing of the hand-overs, which the loop reports (handed_over).
+// period is the mean spacing of the frames' hand-overs, which the loop reports (handed_over).
 // Once behind, it stays so until it idles, so a saturated loop keeps sending only the newest pose
 // however small its backlog of the moment is. Frames of one burst (a TCP read of several frames, a
 // VRPN round, a replay catching up) reach the loop together however idle it is, so none of them
@@ -61,7 +61,7 @@ inline constexpr Duration kSameBurst = std::chrono::microseconds(500);
 /// sends together, is 5-7 ms), below the 20-50 ms a vision delay is usually set to.
 inline constexpr Duration kCatchUpAfter = std::chrono::milliseconds(10);
 /// Below 200 Hz the limit is this many frame periods instead (20 ms at 100 Hz), so that a loop
-/// one frame late for a moment is not behind at any rate.
+/// one frame late for a moment is not behind, from 40 Hz up (kMaxCatchUpAfter).
 inline constexpr int kCatchUpPeriods = 2;
 /// The most the limit grows to at low rates (50 ms is reached at 40 Hz): the upper end of the
 /// vision delays autopilots are usually set to, and a fifth of kMaxFrameWait.
@@ -94,10 +94,12 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
-  /// Its source handed a frame over at `queued` (host time), in order: the loop reports each one
-  /// it takes, before begin_batch. Their mean spacing (an average over about 16 frames; a gap
-  /// longer than kMaxFrameWait is a pause of the source, not its period) is the frame period.
-  void handed_over(HostTime queued) noexcept;
+  /// Its source handed `frame` over at `queued` (host time): the loop reports each frame it
+  /// takes, in order, before begin_batch. The mean spacing of the frames (a running mean over
+  /// about 16; a gap longer than kMaxFrameWait is a pause of the source, not its period, and is
+  /// left out) is the frame period. A frame handed over again (a Vicon frame split over several
+  /// datagrams comes once per datagram: the same number and capture time) is not a new frame.
+  void handed_over(const MocapFrame& frame, HostTime queued) noexcept;
   /// How long a frame may wait for the loop before the loop counts as behind: kCatchUpAfter, or
   /// kCatchUpPeriods frame periods if that is longer, at most kMaxCatchUpAfter.
   [[nodiscard]] Duration catch_up_after() const noexcept;
@@ -132,7 +134,9 @@ class LateFrames {
   std::optional<HostTime> batch_done_;  // when the loop was done with its previous batch
   bool behind_ = false;                 // since a frame waited > catch_up_after(); until one idles
   std::optional<HostTime> last_handed_over_;  // the newest frame's hand-over (handed_over)
-  std::optional<Duration> period_;            // mean spacing of the hand-overs
+  std::uint64_t last_frame_number_ = 0;       // and its number and capture time
+  SourceTime last_capture_{};
+  std::optional<Duration> period_;  // mean spacing of the frames' hand-overs
 };
 
 }  // namespace mocaplink::core
