@@ -413,7 +413,7 @@ void Daemon::drain() {
   // (its oldest frame found it idle)? From the hand-over, not the arrival: a VRPN frame is complete
   // only a settle time after its round's last report arrived (docs/sources.md), which is the
   // source's wait, not the loop's.
-  for (const QueuedFrame& item : batch_) late_frames_.handed_over(item.frame, item.queued);
+  for (const QueuedFrame& item : batch_) late_frames_.observe(item.frame);
   late_frames_.begin_batch(batch_.front().queued, io::host_now());
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     const QueuedFrame& item = batch_[i];

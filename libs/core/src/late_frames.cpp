@@ -26,25 +26,10 @@ bool supersedes(const MocapFrame& newer, const MocapFrame& older) noexcept {
   });
 }
 
-void LateFrames::handed_over(const MocapFrame& frame, HostTime queued) noexcept {
-  if (last_handed_over_) {
-    if (frame.frame_number == last_frame_number_ && frame.capture_time == last_capture_) return;
-    const Duration gap = queued - *last_handed_over_;
-    if (gap < Duration::zero()) return;  // not in order: keep the newest as the reference
-    if (gap <= kMaxFrameWait) {
-      // A running mean with weight 1/16: a source that hands frames over in pairs (0 and two
-      // periods apart) comes out within a few % of its period.
-      period_ = period_ ? *period_ + (gap - *period_) / 16 : gap;
-    }
-  }
-  last_handed_over_ = queued;
-  last_frame_number_ = frame.frame_number;
-  last_capture_ = frame.capture_time;
-}
-
 Duration LateFrames::catch_up_after() const noexcept {
-  if (!period_) return kCatchUpAfter;
-  return std::clamp(kCatchUpPeriods * *period_, kCatchUpAfter, kMaxCatchUpAfter);
+  const auto period = interval_.value();
+  if (!period) return kCatchUpAfter;
+  return std::clamp(kCatchUpPeriods * *period, kCatchUpAfter, kMaxCatchUpAfter);
 }
 
 void LateFrames::begin_batch(HostTime first_queued, HostTime now) noexcept {

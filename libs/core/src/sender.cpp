@@ -85,23 +85,10 @@ bool Sender::set_rate_hz(double rate_hz) {
   return true;
 }
 
-void Sender::observe_interval(SourceTime capture) {
-  if (last_capture_ && capture > *last_capture_) {
-    const Duration sample = capture - *last_capture_;
-    // Falls at once, rises slowly: a dropped frame (a double interval) barely moves it, while
-    // jitter only makes it a little smaller; it follows a source whose rate really changed.
-    if (!frame_interval_ || sample < *frame_interval_) {
-      frame_interval_ = sample;
-    } else {
-      *frame_interval_ += (sample - *frame_interval_) / 16;
-    }
-  }
-}
-
 bool Sender::due(SourceTime capture) {
-  const bool backwards = last_capture_ && capture < *last_capture_;
-  observe_interval(capture);
-  last_capture_ = capture;
+  const auto last = frame_interval_.last();
+  const bool backwards = last && capture < *last;
+  frame_interval_.observe(capture);
   if (!next_due_ || backwards) {
     // First frame, or the source clock went backwards (restart): start the schedule here.
     next_due_ = capture + period_;
@@ -110,7 +97,8 @@ bool Sender::due(SourceTime capture) {
   }
   // A frame claims the slot nearest to it: up to half a source frame interval early (never more
   // than half our own period), so timestamp rounding and jitter do not push a send one frame late.
-  const Duration tolerance = std::min(frame_interval_.value_or(Duration::zero()), period_) / 2;
+  const Duration tolerance =
+      std::min(frame_interval_.value().value_or(Duration::zero()), period_) / 2;
   if (capture < *next_due_ - tolerance) return false;
   // Advance by whole periods to the first slot after this frame: slots already past (frames the
   // source dropped, a gap, a mocap rate below rate_hz) are skipped without a burst and without

@@ -4,8 +4,8 @@
 // burst arrives fresh but was captured up to MS ms before: `mocaplink run` must judge its age from
 // the capture, skip and count the frames too old to send, and mark them in the recording. The
 // frames of a burst never supersede each other (core::kSameBurst), so each is judged late by its
-// capture time; frames the loop was more than 10 ms (or two frame periods) late for are superseded (issue 30); either way
-// they are skipped, counted and marked.
+// capture time; frames the loop was more than 10 ms (or two frame periods) late for are
+// superseded (issue 30); either way they are skipped, counted and marked.
 //
 // The vehicle checks what reaches it: every ODOMETRY's time_usec is the pose's capture time on
 // the daemon's steady clock (docs/messages.md "Time"), the same CLOCK_MONOTONIC as this process's

@@ -178,37 +178,27 @@ TEST(LateFrames, TheLoopStaysBehindUntilAFrameFindsItIdle) {
   EXPECT_EQ(late.superseded(), 1u);
 }
 
-/// Hands frames over to a LateFrames as a source would: each a new frame (the next number, its
-/// capture time the hand-over's), unless `again` (a frame handed over a second time).
-struct Feeder {
+/// A LateFrames whose loop took `n` frames captured `period` apart.
+LateFrames took_every(Duration period, int n) {
   LateFrames late;
-  std::uint64_t number = 0;
   MocapFrame frame;
-  void hand_over(HostTime queued, bool again = false) {
-    if (!again) {
-      frame.frame_number = ++number;
-      frame.capture_time = source_time_from_ns(queued.time_since_epoch().count());
-    }
-    late.handed_over(frame, queued);
+  for (int i = 0; i < n; ++i) {
+    frame.frame_number = static_cast<std::uint64_t>(i);
+    frame.capture_time = source_time_from_ns(1'000'000'000'000) + i * period;
+    late.observe(frame);
   }
-};
-
-/// A LateFrames that was handed `n` frames `period` apart, the last at `last`.
-LateFrames handed_over_every(Duration period, int n, HostTime last) {
-  Feeder feed;
-  for (int i = n - 1; i >= 0; --i) feed.hand_over(last - i * period);
-  return feed.late;
+  return late;
 }
 
 TEST(LateFrames, BelowTwoHundredHertzTheLoopIsBehindOnlyOnceAFrameWaitedTwoPeriods) {
   // 240 Hz: two periods are 8.3 ms, so the limit stays 10 ms.
-  LateFrames fast = handed_over_every(std::chrono::microseconds(4167), 100, t0);
+  LateFrames fast = took_every(std::chrono::microseconds(4167), 100);
   EXPECT_EQ(fast.catch_up_after(), kCatchUpAfter);
   fast.begin_batch(t0, t0 + 11ms);
   EXPECT_TRUE(fast.behind());
 
   // 100 Hz: a loop one frame late (a frame waited 15 ms) is not behind; two frames late is.
-  LateFrames slow = handed_over_every(10ms, 100, t0);
+  LateFrames slow = took_every(10ms, 100);
   EXPECT_EQ(slow.catch_up_after(), 20ms);
   slow.begin_batch(t0, t0 + 15ms);
   EXPECT_FALSE(slow.behind());
@@ -220,69 +210,22 @@ TEST(LateFrames, BelowTwoHundredHertzTheLoopIsBehindOnlyOnceAFrameWaitedTwoPerio
   EXPECT_TRUE(slow.behind());
 
   // 10 Hz would be 200 ms: the limit stops at kMaxCatchUpAfter.
-  EXPECT_EQ(handed_over_every(100ms, 100, t0).catch_up_after(), kMaxCatchUpAfter);
+  EXPECT_EQ(took_every(100ms, 100).catch_up_after(), kMaxCatchUpAfter);
 }
 
-TEST(LateFrames, ThePeriodIsTheMeanSpacingOfTheHandOvers) {
-  // Before any spacing is known, the limit is kCatchUpAfter.
-  Feeder first;
-  EXPECT_EQ(first.late.catch_up_after(), kCatchUpAfter);
-  first.hand_over(t0);
-  EXPECT_EQ(first.late.catch_up_after(), kCatchUpAfter);
-
-  // A running mean with weight 1/16: at 10 ms, one gap of 26 ms makes the period 11 ms.
-  Feeder step;
-  for (int i = 0; i < 100; ++i) step.hand_over(t0 + i * 10ms);
-  step.hand_over(t0 + 99 * 10ms + 26ms);
-  EXPECT_EQ(step.late.catch_up_after(), 22ms);
-
-  // 100 Hz handed over in pairs (a TCP read of two frames every 20 ms): the mean spacing is
-  // 10 ms, so the limit is 20 ms, within the running mean's swing (a few %).
-  Feeder pairs;
-  for (int i = 0; i < 200; ++i) {
-    pairs.hand_over(t0 + i * 20ms);
-    pairs.hand_over(t0 + i * 20ms);
-  }
-  const double limit_ms =
-      std::chrono::duration<double, std::milli>(pairs.late.catch_up_after()).count();
-  EXPECT_NEAR(limit_ms, 20.0, 1.5);
-
-  // A pause of the source (longer than kMaxFrameWait without frames) is not a frame period; a
-  // gap of exactly kMaxFrameWait is one (a 4 Hz source).
-  Feeder paused;
-  for (int i = 0; i < 100; ++i) paused.hand_over(t0 + i * 10ms);
-  paused.hand_over(t0 + 99 * 10ms + kMaxFrameWait + 1ns);
-  EXPECT_EQ(paused.late.catch_up_after(), 20ms);
-  Feeder slow;
-  for (int i = 0; i < 100; ++i) slow.hand_over(t0 + i * 10ms);
-  slow.hand_over(t0 + 99 * 10ms + kMaxFrameWait);
-  EXPECT_EQ(slow.late.catch_up_after(), 20ms + 2 * (kMaxFrameWait - 10ms) / 16);
-
-  // The rate rises from 100 to 240 Hz: within a few dozen frames the limit is 10 ms again.
-  Feeder faster;
-  for (int i = 0; i < 100; ++i) faster.hand_over(t0 + i * 10ms);
-  for (int i = 1; i <= 60; ++i) faster.hand_over(t0 + 990ms + i * std::chrono::microseconds(4167));
-  EXPECT_EQ(faster.late.catch_up_after(), kCatchUpAfter);
-}
-
-TEST(LateFrames, AFrameHandedOverAgainIsNotANewFrame) {
-  // A Vicon frame split over three datagrams comes three times, microseconds apart, with the same
-  // number and capture time: the period stays the frames' 10 ms, not a third of it.
-  Feeder split;
+TEST(LateFrames, TheLimitFollowsTheFramesTheLoopTook) {
+  // Before two frames, kCatchUpAfter.
+  EXPECT_EQ(LateFrames().catch_up_after(), kCatchUpAfter);
+  EXPECT_EQ(took_every(10ms, 1).catch_up_after(), kCatchUpAfter);
+  // A Vicon UDP frame split over three datagrams is taken three times, with one capture time:
+  // the period is the frames' 10 ms, not a third of it (which would keep the limit at 10 ms).
+  LateFrames late;
+  MocapFrame frame;
   for (int i = 0; i < 100; ++i) {
-    split.hand_over(t0 + i * 10ms);
-    split.hand_over(t0 + i * 10ms + 50us, true);
-    split.hand_over(t0 + i * 10ms + 100us, true);
+    frame.capture_time = source_time_from_ns(1'000'000'000'000) + i * 10ms;
+    for (int copy = 0; copy < 3; ++copy) late.observe(frame);
   }
-  EXPECT_EQ(split.late.catch_up_after(), 20ms);
-}
-
-TEST(LateFrames, AHandOverOutOfOrderIsLeftOut) {
-  Feeder feed;
-  for (int i = 0; i < 100; ++i) feed.hand_over(t0 + i * 10ms);
-  feed.hand_over(t0 + 980ms);   // before the newest (t0 + 990 ms): left out, the newest stays
-  feed.hand_over(t0 + 1000ms);  // 10 ms after the newest, not 20 after the one out of order
-  EXPECT_EQ(feed.late.catch_up_after(), 20ms);
+  EXPECT_EQ(late.catch_up_after(), 20ms);
 }
 
 TEST(LateFrames, TheWarningSaysHowManyWereSupersededAndHowManyLate) {

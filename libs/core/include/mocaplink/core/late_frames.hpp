@@ -24,7 +24,8 @@
 // the CPU cannot do, not what a hiccup delayed. The limit is kCatchUpAfter, or kCatchUpPeriods
 // frame periods where that is longer (below 200 Hz; at 100 Hz 10 ms is a single period, and a loop
 // one frame late would supersede the frame it was late with), at most kMaxCatchUpAfter; the
-// period is the mean spacing of the frames' hand-overs, which the loop reports (handed_over).
+// period is the interval between the frames' capture times (FrameInterval, as the Sender observes
+// it), from the frames the loop reports (observe).
 // Once behind, it stays so until it idles, so a saturated loop keeps sending only the newest pose
 // however small its backlog of the moment is. Frames of one burst (a TCP read of several frames, a
 // VRPN round, a replay catching up) reach the loop together however idle it is, so none of them
@@ -42,6 +43,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "mocaplink/core/frame_interval.hpp"
 #include "mocaplink/core/mocap_frame.hpp"
 #include "mocaplink/core/time.hpp"
 
@@ -94,12 +96,9 @@ class LateFrames {
   [[nodiscard]] bool skip_if_late(HostTime received, HostTime now) noexcept {
     return skip_if_late(now - received);
   }
-  /// Its source handed `frame` over at `queued` (host time): the loop reports each frame it
-  /// takes, in order, before begin_batch. The mean spacing of the frames (a running mean over
-  /// about 16; a gap longer than kMaxFrameWait is a pause of the source, not its period, and is
-  /// left out) is the frame period. A frame handed over again (a Vicon frame split over several
-  /// datagrams comes once per datagram: the same number and capture time) is not a new frame.
-  void handed_over(const MocapFrame& frame, HostTime queued) noexcept;
+  /// The loop took `frame` from the queue: it reports each one, in order, before begin_batch.
+  /// The interval between their capture times (FrameInterval) is the frame period.
+  void observe(const MocapFrame& frame) noexcept { interval_.observe(frame.capture_time); }
   /// How long a frame may wait for the loop before the loop counts as behind: kCatchUpAfter, or
   /// kCatchUpPeriods frame periods if that is longer, at most kMaxCatchUpAfter.
   [[nodiscard]] Duration catch_up_after() const noexcept;
@@ -133,10 +132,7 @@ class LateFrames {
   std::optional<HostTime> warned_;      // when the previous warning was given
   std::optional<HostTime> batch_done_;  // when the loop was done with its previous batch
   bool behind_ = false;                 // since a frame waited > catch_up_after(); until one idles
-  std::optional<HostTime> last_handed_over_;  // the newest frame's hand-over (handed_over)
-  std::uint64_t last_frame_number_ = 0;       // and its number and capture time
-  SourceTime last_capture_{};
-  std::optional<Duration> period_;  // mean spacing of the frames' hand-overs
+  FrameInterval interval_;              // between the frames' capture times (observe)
 };
 
 }  // namespace mocaplink::core

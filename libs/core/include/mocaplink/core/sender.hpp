@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/frame_interval.hpp"
 #include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/message_builders.hpp"
 #include "mocaplink/core/message_table.hpp"
@@ -175,7 +176,6 @@ class Sender {
 
  private:
   bool due(SourceTime capture);
-  void observe_interval(SourceTime capture);
   void emit(const mavlink::Message& message, HostTime now, std::uint64_t signing_now_10us,
             std::vector<OutgoingMessage>& out);
   void emit_kind(MessageKind kind, const BodyEstimate& estimate, const SendContext& context,
@@ -187,9 +187,8 @@ class Sender {
   mavlink::SequenceCounter sequence_;
   std::optional<mavlink::OutgoingSigner> signer_;
   std::optional<SourceTime> next_due_;
-  std::optional<SourceTime> last_capture_;      ///< of the latest frame seen
   std::optional<SourceTime> last_due_capture_;  ///< of the latest frame that claimed a slot
-  std::optional<Duration> frame_interval_;      ///< the source's frame interval, as observed
+  FrameInterval frame_interval_;                ///< the source's, as observed; its latest frame
   std::optional<HostTime> next_heartbeat_;
   std::optional<HostTime> next_origin_;
   std::optional<HostTime> next_timesync_;
