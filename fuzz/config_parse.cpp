@@ -106,7 +106,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto shape = mocaplink::config::parse_source_url(line);
     const auto source = sources.check(line);
     require(shape || !source.error.empty());  // the registry never accepts a malformed URL
-    (void)mocaplink::config::parse_link_url(line);
+    // A link that parses round-trips through its canonical form (what `check` prints, the
+    // dashboard shows and a shared link is recognised by).
+    if (const auto link = mocaplink::config::parse_link_url(line)) {
+      const auto again =
+          mocaplink::config::parse_link_url(mocaplink::config::to_string(link.value()));
+      require(again && again.value() == link.value());
+    }
     (void)mocaplink::config::parse_north(line);
     overrides.vehicles.push_back(line);
     keys.push_back(typed_key(line));

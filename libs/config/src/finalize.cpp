@@ -106,6 +106,42 @@ std::optional<core::GeodeticPosition> finalize_origin(const ConfigDraft& d,
   return core::GeodeticPosition{*d.latitude_deg.value, *d.longitude_deg.value, *d.altitude_m.value};
 }
 
+/// A plain udp:// link (no `bind`) to a PX4 goes deaf after a restart: PX4's UDP link answers
+/// only the first address that spoke to it since boot (mavlink_receiver latches its partner), and
+/// each process sends from a new ephemeral port. The warning names the form that stays heard.
+std::optional<std::string> px4_udp_warning(core::Profile profile, const LinkUrl& link) {
+  const bool px4 = profile == core::Profile::px4 || profile == core::Profile::px4_gps ||
+                   profile == core::Profile::automatic;
+  if (!px4 || link.kind != LinkKind::udp || link.bind) return std::nullopt;
+  const std::uint16_t port = link.address.port;
+  // On this machine only PX4 SITL can be the vehicle, and it serves known ports (ROMFS
+  // init.d-posix/px4-rc.mavlink, instance i): its onboard (API/offboard) link listens on 14580+i
+  // and sends to 14540+i from boot — listening there needs no first word at all —, its GCS link
+  // listens on 18570+i. Any other loopback port is a listener (QGroundControl's 14550, the demo's).
+  const bool loopback = is_loopback(link.address.host);
+  const bool sitl_onboard = loopback && port >= 14580 && port <= 14589;
+  const bool sitl_gcs = loopback && port >= 18570 && port <= 18579;
+  if (loopback && !sitl_onboard && !sitl_gcs) return std::nullopt;
+  // Any free local port will do; the vehicle's own number where the vehicle is another machine
+  // (mavros's udp://:14540@HOST:14557 convention), another one on this machine, where the
+  // vehicle's port is taken.
+  const std::uint16_t example_port =
+      !is_loopback(link.address.host)
+          ? port
+          : static_cast<std::uint16_t>(port < 64535 ? port + 1000 : port - 1000);
+  std::string advice = sitl_onboard ? "use udpin://127.0.0.1:" + std::to_string(port - 40) +
+                                          " (PX4 SITL's onboard link sends there from boot)"
+                                    : "send from a fixed local port, as in " + to_string(link) +
+                                          "?bind=:" + std::to_string(example_port) +
+                                          ", so that every mocaplink process is the same peer";
+  return std::string(profile == core::Profile::automatic ? "profile auto may find a PX4, which"
+                                                         : "a PX4") +
+         " answers only the first address that spoke to its UDP port since it booted, and a "
+         "plain udp:// link sends from a new port in every process: after `vehicle setup` or a "
+         "restart of `run` the next process would hear nothing until the vehicle reboots; " +
+         advice;
+}
+
 std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft& d,
                                         const MocapSettings& mocap, bool have_origin,
                                         Diagnostics& diagnostics) {
@@ -180,6 +216,9 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
                         "profile auto may find ArduPilot, whose external-navigation input is meant "
                         "for at most 50 Hz");
   }
+  if (auto warning = px4_udp_warning(out.profile, vehicle.link)) {
+    diagnostics.warning(v.link.where, v.link.key, *warning);
+  }
   if (vehicle.link.kind == LinkKind::serial) {
     // The one bandwidth rule (core::serial_bandwidth_warning): `check`, `run` and a dashboard
     // POST all report it from here.
@@ -208,8 +247,19 @@ void cross_check_vehicles(const ConfigDraft& d, Diagnostics& diagnostics) {
     bool shared_warned = false;
     for (std::size_t j = 0; j < i; ++j) {
       const auto& first = d.vehicles[j];
-      if (!first.link.value || *first.link.value != *v.link.value) continue;
+      if (!first.link.value) continue;
       const std::string first_name = first.name.value.value_or("?");
+      if (same_local_port(*first.link.value, *v.link.value)) {
+        // Each vehicle opens its own socket: the second could not bind the port the first owns.
+        diagnostics.error(v.link.where, v.link.key,
+                          "link " + to_string(*v.link.value) + " needs the local port " +
+                              std::to_string(local_address(*v.link.value)->port) +
+                              " that vehicle " + quoted(first_name) + "'s link " +
+                              to_string(*first.link.value) + " already owns (" +
+                              describe(first.link.where) + "); give each vehicle its own port");
+        break;
+      }
+      if (*first.link.value != *v.link.value) continue;
       if (v.system_id.value && first.system_id.value &&
           *v.system_id.value == *first.system_id.value) {
         diagnostics.error(v.system_id.where, v.system_id.key,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 #include <string>
 
 #include "mocaplink/config/url.hpp"
@@ -10,15 +11,18 @@
 namespace mocaplink::config {
 namespace {
 
-constexpr std::array<std::string_view, 3> kSchemes = {"udp", "tcp", "serial"};
+constexpr std::array<std::string_view, 5> kSchemes = {"udp", "udpin", "tcp", "tcpin", "serial"};
 // Serial devices are named the platform's way: a COM port on Windows, a device path on Linux.
 #ifdef _WIN32
-constexpr std::string_view kForms = "udp://HOST:PORT, tcp://HOST:PORT or serial://COMn?baud=N";
+constexpr std::string_view kForms =
+    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "or serial://COMn?baud=N";
 constexpr std::string_view kSerialRule = "serial device must be a COM port name, as in ";
 constexpr std::string_view kSerialExample = "serial://COM3?baud=921600";
 #else
 constexpr std::string_view kForms =
-    "udp://HOST:PORT, tcp://HOST:PORT or serial:///dev/DEVICE?baud=N";
+    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "or serial:///dev/DEVICE?baud=N";
 constexpr std::string_view kSerialRule = "serial device must be an absolute path, as in ";
 constexpr std::string_view kSerialExample = "serial:///dev/ttyUSB0?baud=921600";
 #endif
@@ -40,25 +44,89 @@ bool is_broadcast_or_multicast(const std::string& host) {
   return first_octet >= 224 && first_octet <= 239;
 }
 
+constexpr std::string_view kSharedAddress =
+    "broadcast and multicast addresses are not allowed: pose messages have no target system, so "
+    "every vehicle listening would fuse them; give each vehicle its own unicast address";
+
+/// "14540": a port without the colon that says the address was left out.
+bool is_port_alone(std::string_view text) {
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+/// A local address to bind: an IP literal of this machine, or empty for every interface. A name
+/// is refused rather than resolved (libs/ do no I/O, and a name may stand for several addresses).
+std::string check_local_address(const HostPort& address, std::string_view what) {
+  const auto& host = address.host;
+  if (host.empty() || is_ipv4_literal(host) || host.find(':') != std::string::npos) return "";
+  return std::string(what) + " must be an IP address of this machine, or left out for every " +
+         "interface (as in :" + std::to_string(address.port) + "), got " + detail::quoted(host);
+}
+
+/// udp://HOST:PORT[?bind=[ADDR]:PORT] and tcp://HOST:PORT: the vehicle's address.
+/// udpin://[ADDR]:PORT and tcpin://[ADDR]:PORT: the local address to listen on (empty: all).
 Result parse_network(LinkKind kind, const UrlParts& parts) {
-  if (auto error = check_query_keys(parts, {}, std::string(to_string(kind)) + "://");
-      !error.empty()) {
+  const std::string scheme = std::string(to_string(kind)) + "://";
+  constexpr std::array<std::string_view, 1> kUdpKeys = {"bind"};
+  const auto keys = kind == LinkKind::udp ? std::span<const std::string_view>(kUdpKeys)
+                                          : std::span<const std::string_view>();
+  if (auto error = check_query_keys(parts, keys, scheme); !error.empty()) {
     return Result::failure(error);
   }
+  const bool listening = kind == LinkKind::udpin || kind == LinkKind::tcpin;
   if (parts.body.find('/') != std::string_view::npos) {
-    return Result::failure(std::string(to_string(kind)) + ":// takes HOST:PORT only, got " +
-                           detail::quoted(parts.body));
-  }
-  auto address = parse_host_port(parts.body, HostPortRules{});
-  if (!address) return Result::failure(address.error());
-  if (is_broadcast_or_multicast(address.value().host)) {
     return Result::failure(
-        "broadcast and multicast addresses are not allowed: pose messages have no target system, "
-        "so every vehicle listening would fuse them; give each vehicle its own unicast address");
+        scheme + (listening ? " takes [ADDR]:PORT only, got " : " takes HOST:PORT only, got ") +
+        detail::quoted(parts.body));
+  }
+  HostPortRules rules;
+  rules.host_optional = listening;
+  if (listening && is_port_alone(parts.body)) {
+    return Result::failure(scheme + " listens on [ADDR]:PORT, got " + detail::quoted(parts.body) +
+                           " (a port alone is written :" + std::string(parts.body) + ")");
+  }
+  auto address = parse_host_port(parts.body, rules);
+  if (!address) {
+    return Result::failure(listening ? scheme +
+                                           " listens on [ADDR]:PORT (ADDR may be left out "
+                                           "for every interface): " +
+                                           address.error()
+                                     : address.error());
+  }
+  if (is_broadcast_or_multicast(address.value().host)) {
+    return Result::failure(std::string(kSharedAddress));
+  }
+  if (listening) {
+    if (auto error = check_local_address(address.value(), scheme + " ADDR"); !error.empty()) {
+      return Result::failure(error);
+    }
   }
   LinkUrl link;
   link.kind = kind;
   link.address = std::move(address).value();
+  for (const auto& [key, value] : parts.query) {  // only "bind", for udp
+    HostPortRules bind_rules;
+    bind_rules.host_optional = true;
+    if (is_port_alone(value)) {
+      return Result::failure("bind must be [ADDR]:PORT, the local address to send from, got " +
+                             detail::quoted(value) +
+                             " (a port alone is written :" + std::string(value) + ")");
+    }
+    auto bind = parse_host_port(value, bind_rules);
+    if (!bind) {
+      return Result::failure(
+          "bind must be [ADDR]:PORT, the local address to send from (ADDR may "
+          "be left out for every interface, as in bind=:14540): " +
+          bind.error());
+    }
+    if (is_broadcast_or_multicast(bind.value().host)) {
+      return Result::failure(std::string(kSharedAddress));
+    }
+    if (auto error = check_local_address(bind.value(), "bind's ADDR"); !error.empty()) {
+      return Result::failure(error);
+    }
+    link.bind = std::move(bind).value();
+  }
   return link;
 }
 
@@ -132,7 +200,9 @@ ValueOrError<LinkUrl> parse_link_url(std::string_view text) {
   }
   const auto& p = parts.value();
   if (p.scheme == "udp") return parse_network(LinkKind::udp, p);
+  if (p.scheme == "udpin") return parse_network(LinkKind::udpin, p);
   if (p.scheme == "tcp") return parse_network(LinkKind::tcp, p);
+  if (p.scheme == "tcpin") return parse_network(LinkKind::tcpin, p);
   if (p.scheme == "serial") return parse_serial(p);
   return Result::failure("unknown link scheme " + detail::quoted(p.scheme) +
                          detail::did_you_mean(p.scheme, kSchemes) + " (expected " +
@@ -143,7 +213,30 @@ std::string to_string(const LinkUrl& link) {
   if (link.kind == LinkKind::serial) {
     return "serial://" + link.device + "?baud=" + std::to_string(link.baud);
   }
-  return std::string(to_string(link.kind)) + "://" + to_string(link.address);
+  std::string out = std::string(to_string(link.kind)) + "://" + to_string(link.address);
+  if (link.bind) out += "?bind=" + to_string(*link.bind);
+  return out;
+}
+
+bool listens(const LinkUrl& link) {
+  return link.kind == LinkKind::udpin || link.kind == LinkKind::tcpin;
+}
+
+std::optional<HostPort> local_address(const LinkUrl& link) {
+  if (listens(link)) return link.address;
+  if (link.kind == LinkKind::udp && link.bind) return link.bind;
+  return std::nullopt;
+}
+
+bool same_local_port(const LinkUrl& a, const LinkUrl& b) {
+  const auto la = local_address(a);
+  const auto lb = local_address(b);
+  if (!la || !lb || la->port != lb->port) return false;
+  if ((a.kind == LinkKind::tcpin) != (b.kind == LinkKind::tcpin)) return false;  // UDP vs TCP
+  const auto any = [](const std::string& host) {
+    return host.empty() || host == "0.0.0.0" || host == "::";
+  };
+  return la->host == lb->host || any(la->host) || any(lb->host);
 }
 
 }  // namespace mocaplink::config

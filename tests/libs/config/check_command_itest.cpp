@@ -89,7 +89,7 @@ source = "optitrack://mocap-pc"
 [[vehicle]]
 name = "quad1"
 body = "Quad1"
-link = "udp://192.168.1.21:14540"
+link = "udp://192.168.1.21:14540?bind=:14540"
 system_id = 1
 profile = "px4"
 )");

@@ -573,6 +573,60 @@ TEST(ParseConfig, SerialLinkTooSlowForTheProfileIsAWarning) {
   EXPECT_THAT(fast.warnings, testing::IsEmpty());
 }
 
+TEST(ParseConfig, PlainUdpToAPx4IsAWarningThatNamesTheFormToUse) {
+  const auto vehicle = [](const std::string& link, const char* profile) {
+    return kMocap + "[[vehicle]]\nname = \"q\"\nbody = \"Q\"\nlink = \"" + link +
+           "\"\nsystem_id = 1\nprofile = \"" + profile + "\"\n";
+  };
+  const std::string deaf =
+      "answers only the first address that spoke to its UDP port since it booted, and a plain "
+      "udp:// link sends from a new port in every process: after `vehicle setup` or a restart of "
+      "`run` the next process would hear nothing until the vehicle reboots; ";
+  // PX4 SITL's onboard link: listen where it sends.
+  EXPECT_EQ(warning_lines(parse_config(vehicle("udp://127.0.0.1:14580", "px4"), "p.toml")),
+            (std::vector<std::string>{"p.toml:6:8: vehicle[1].link: a PX4 " + deaf +
+                                      "use udpin://127.0.0.1:14540 (PX4 SITL's onboard link sends "
+                                      "there from boot)"}));
+  EXPECT_THAT(warning_lines(parse_config(vehicle("udp://127.0.0.1:14583", "px4"), "p.toml")),
+              testing::ElementsAre(testing::HasSubstr("use udpin://127.0.0.1:14543 ")));
+  // A PX4 on another machine: the same local port number; on this one, another.
+  EXPECT_EQ(warning_lines(parse_config(vehicle("udp://192.168.1.30:14540", "auto"), "a.toml")),
+            (std::vector<std::string>{
+                "a.toml:6:8: vehicle[1].link: profile auto may find a PX4, which " + deaf +
+                "send from a fixed local port, as in udp://192.168.1.30:14540?bind=:14540, so "
+                "that every mocaplink process is the same peer"}));
+  EXPECT_THAT(warning_lines(parse_config(vehicle("udp://127.0.0.1:18570", "px4"), "p.toml")),
+              testing::ElementsAre(testing::HasSubstr("as in udp://127.0.0.1:18570?bind=:19570,")));
+  // On this machine only PX4 SITL's ports are a PX4's: another loopback port is a listener (the
+  // demo's and QGroundControl's 14550, MAVSDK's 14540).
+  for (const char* link : {"udp://127.0.0.1:14550", "udp://127.0.0.1:14540"}) {
+    EXPECT_THAT(parse_config(vehicle(link, "px4"), "o.toml").warnings, testing::IsEmpty()) << link;
+  }
+  // The forms that stay heard, and autopilots that answer whoever speaks: no warning.
+  for (const char* link : {"udp://192.168.1.30:14540?bind=:14540", "udpin://127.0.0.1:14540",
+                           "tcp://127.0.0.1:5760", "tcpin://:5760"}) {
+    EXPECT_THAT(parse_config(vehicle(link, "px4"), "o.toml").warnings, testing::IsEmpty()) << link;
+  }
+  EXPECT_THAT(parse_config(vehicle("udp://127.0.0.1:14550", "ardupilot"), "o.toml").warnings,
+              testing::IsEmpty());
+}
+
+TEST(ParseConfig, TwoLinksOwningOnePortIsAnError) {
+  const auto result = parse_config(kMocap +
+                                       "[[vehicle]]\nname = \"a\"\nbody = \"A\"\n"
+                                       "link = \"udpin://:14540\"\nsystem_id = 1\n"
+                                       "profile = \"px4\"\n"
+                                       "[[vehicle]]\nname = \"b\"\nbody = \"B\"\n"
+                                       "link = \"udp://10.0.0.9:14540?bind=127.0.0.1:14540\"\n"
+                                       "system_id = 2\nprofile = \"px4\"\n",
+                                   "two.toml");
+  EXPECT_EQ(error_lines(result),
+            (std::vector<std::string>{
+                "two.toml:12:8: vehicle[2].link: link udp://10.0.0.9:14540?bind=127.0.0.1:14540 "
+                "needs the local port 14540 that vehicle \"a\"'s link udpin://:14540 already owns "
+                "(two.toml:6:8); give each vehicle its own port"}));
+}
+
 TEST(ParseConfig, NoVehiclesIsAWarning) {
   const auto result = parse_config(kMocap, "n.toml");
   ASSERT_TRUE(result.ok());

@@ -20,6 +20,18 @@ TEST(SourceUrl, KeepsTheTextAndScheme) {
   EXPECT_EQ(parse_source_url("sim://?bodies").error(), "query item \"bodies\" is not KEY=VALUE");
 }
 
+#ifdef _WIN32
+constexpr std::string_view kForms =
+    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "or serial://COMn?baud=N";
+constexpr const char* kSerial = "serial://COM3";
+#else
+constexpr std::string_view kForms =
+    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "or serial:///dev/DEVICE?baud=N";
+constexpr const char* kSerial = "serial:///dev/ttyUSB0";
+#endif
+
 TEST(LinkUrl, ParsesTheThreeKinds) {
   const auto udp = parse_link_url("udp://192.168.1.21:14540");
   ASSERT_TRUE(udp) << udp.error();
@@ -49,14 +61,84 @@ TEST(LinkUrl, ParsesTheThreeKinds) {
 #endif
 }
 
-#ifdef _WIN32
-constexpr std::string_view kForms = "udp://HOST:PORT, tcp://HOST:PORT or serial://COMn?baud=N";
-constexpr const char* kSerial = "serial://COM3";
-#else
-constexpr std::string_view kForms =
-    "udp://HOST:PORT, tcp://HOST:PORT or serial:///dev/DEVICE?baud=N";
-constexpr const char* kSerial = "serial:///dev/ttyUSB0";
-#endif
+TEST(LinkUrl, ParsesTheEndpointForms) {
+  // udp with a fixed local address: the vehicle's address stays `address`, bind is the local one.
+  const auto bound = parse_link_url("udp://192.168.1.21:14540?bind=:14540");
+  ASSERT_TRUE(bound) << bound.error();
+  EXPECT_EQ(bound.value().kind, LinkKind::udp);
+  EXPECT_EQ(bound.value().address, (HostPort{"192.168.1.21", 14540}));
+  EXPECT_EQ(bound.value().bind, (HostPort{"", 14540}));
+  EXPECT_EQ(to_string(bound.value()), "udp://192.168.1.21:14540?bind=:14540");
+  EXPECT_FALSE(listens(bound.value()));
+  EXPECT_EQ(local_address(bound.value()), (HostPort{"", 14540}));
+  const auto bound_v6 = parse_link_url("udp://[fd00::5]:14540?bind=[fd00::1]:14541");
+  ASSERT_TRUE(bound_v6) << bound_v6.error();
+  EXPECT_EQ(to_string(bound_v6.value()), "udp://[fd00::5]:14540?bind=[fd00::1]:14541");
+  EXPECT_EQ(parse_link_url("udp://h:14540").value().bind, std::nullopt);
+  EXPECT_EQ(local_address(parse_link_url("udp://h:14540").value()), std::nullopt);
+
+  // Listening forms: the address is local, and may be left out.
+  const auto udpin = parse_link_url("udpin://127.0.0.1:14540");
+  ASSERT_TRUE(udpin) << udpin.error();
+  EXPECT_EQ(udpin.value().kind, LinkKind::udpin);
+  EXPECT_EQ(udpin.value().address, (HostPort{"127.0.0.1", 14540}));
+  EXPECT_TRUE(listens(udpin.value()));
+  EXPECT_EQ(to_string(udpin.value()), "udpin://127.0.0.1:14540");
+  const auto any = parse_link_url("udpin://:14550");
+  ASSERT_TRUE(any) << any.error();
+  EXPECT_EQ(any.value().address, (HostPort{"", 14550}));
+  EXPECT_EQ(to_string(any.value()), "udpin://:14550");
+  const auto tcpin = parse_link_url("tcpin://0.0.0.0:5770");
+  ASSERT_TRUE(tcpin) << tcpin.error();
+  EXPECT_EQ(tcpin.value().kind, LinkKind::tcpin);
+  EXPECT_EQ(to_string(tcpin.value()), "tcpin://0.0.0.0:5770");
+  EXPECT_EQ(to_string(parse_link_url("tcpin://[::]:5770").value()), "tcpin://[::]:5770");
+}
+
+TEST(LinkUrl, RejectsBadEndpointForms) {
+  const auto error = [](const char* url) { return parse_link_url(url).error(); };
+  EXPECT_EQ(error("udpin://vehicle.lab:14540"),
+            "udpin:// ADDR must be an IP address of this machine, or left out for every "
+            "interface (as in :14540), got \"vehicle.lab\"");
+  EXPECT_EQ(error("udp://h:1?bind=localhost:2"),
+            "bind's ADDR must be an IP address of this machine, or left out for every interface "
+            "(as in :2), got \"localhost\"");
+  EXPECT_EQ(error("udp://h:1?bind=:0"),
+            "bind must be [ADDR]:PORT, the local address to send from (ADDR may be left out for "
+            "every interface, as in bind=:14540): port must be 1..65535, got \"0\"");
+  EXPECT_EQ(error("udp://h:1?bind=14540"),
+            "bind must be [ADDR]:PORT, the local address to send from, got \"14540\" (a port "
+            "alone is written :14540)");
+  EXPECT_EQ(error("udpin://14540"),
+            "udpin:// listens on [ADDR]:PORT, got \"14540\" (a port alone is written :14540)");
+  EXPECT_EQ(error("udpin://h:"),
+            "udpin:// listens on [ADDR]:PORT (ADDR may be left out for every interface): " +
+                parse_host_port("h:", HostPortRules{}).error());
+  EXPECT_EQ(error("tcpin://:1/x"), "tcpin:// takes [ADDR]:PORT only, got \":1/x\"");
+  EXPECT_EQ(error("tcpin://:5770?bind=:1"), "tcpin:// takes no options, got \"bind\"");
+  EXPECT_EQ(error("tcp://h:5760?bind=:1"), "tcp:// takes no options, got \"bind\"");
+  EXPECT_EQ(error("udpin://239.1.1.1:14550"),
+            "broadcast and multicast addresses are not allowed: pose messages have no target "
+            "system, so every vehicle listening would fuse them; give each vehicle its own "
+            "unicast address");
+  EXPECT_EQ(error("tcpn://:1"), "unknown link scheme \"tcpn\"; did you mean \"tcp\"? (expected " +
+                                    std::string(kForms) + ")");
+}
+
+TEST(LinkUrl, LocalPortsThatCannotBeSharedInOneProcess) {
+  const auto link = [](const char* url) { return parse_link_url(url).value(); };
+  // The same UDP port on overlapping addresses: the second socket could not bind it.
+  EXPECT_TRUE(same_local_port(link("udpin://:14540"), link("udpin://127.0.0.1:14540")));
+  EXPECT_TRUE(same_local_port(link("udpin://:14540"), link("udp://10.0.0.2:14540?bind=:14540")));
+  EXPECT_TRUE(same_local_port(link("udpin://0.0.0.0:9"), link("udpin://10.0.0.1:9")));
+  // Different addresses, ports or protocols can.
+  EXPECT_FALSE(same_local_port(link("udpin://127.0.0.1:9"), link("udpin://10.0.0.1:9")));
+  EXPECT_FALSE(same_local_port(link("udpin://:14540"), link("udpin://:14541")));
+  EXPECT_FALSE(same_local_port(link("udpin://:5760"), link("tcpin://:5760")));
+  // Ephemeral ports never clash.
+  EXPECT_FALSE(same_local_port(link("udp://10.0.0.2:14540"), link("udp://10.0.0.2:14540")));
+  EXPECT_FALSE(same_local_port(link("tcp://10.0.0.2:5760"), link("tcpin://:5760")));
+}
 
 #ifdef _WIN32
 TEST(LinkUrl, SerialDevicesAreComPortsOnWindows) {
@@ -82,7 +164,7 @@ TEST(LinkUrl, RejectsBadAndSharedDestinations) {
   EXPECT_EQ(error("udp://::1:5"),
             "IPv6 addresses need brackets, as in \"[::1]:8080\", got \"::1:5\"");
   EXPECT_EQ(error("udp://h:1/x"), "udp:// takes HOST:PORT only, got \"h:1/x\"");
-  EXPECT_EQ(error("udp://h:1?ttl=2"), "udp:// takes no options, got \"ttl\"");
+  EXPECT_EQ(error("udp://h:1?ttl=2"), "unknown option \"ttl\" for udp:// (options: bind)");
   const std::string shared =
       "broadcast and multicast addresses are not allowed: pose messages have no target system, "
       "so every vehicle listening would fuse them; give each vehicle its own unicast address";

@@ -1,8 +1,17 @@
-// Vehicle link URLs (DESIGN.md "Command line"): udp://host:port, tcp://host:port,
-// serial:///dev/ttyUSB0?baud=921600. Syntax only; the io adapter opens them.
+// Vehicle link URLs (DESIGN.md "Command line", docs/config.md "Links"): MAVLink's usual endpoint
+// forms, as MAVProxy (udpin:/udpout:), MAVSDK, mavros and mavlink-router name them:
+//   udp://HOST:PORT[?bind=[ADDR]:PORT]  send to the vehicle (replies on the same socket); `bind`
+//                                       fixes the local address, so every mocaplink process is
+//                                       the same peer to a vehicle that answers only its first one
+//   udpin://[ADDR]:PORT                 listen; answer the address the vehicle last spoke from
+//   tcp://HOST:PORT                     connect to the vehicle's TCP server
+//   tcpin://[ADDR]:PORT                 a TCP server for one vehicle connection at a time
+//   serial:///dev/ttyUSB0?baud=921600   a serial port (COMn on Windows)
+// Syntax only; the io adapter opens them (io::make_link).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -11,32 +20,50 @@
 
 namespace mocaplink::config {
 
-enum class LinkKind { udp, tcp, serial };
+enum class LinkKind { udp, udpin, tcp, tcpin, serial };
 
-/// "udp", "tcp", "serial".
+/// "udp", "udpin", "tcp", "tcpin", "serial".
 [[nodiscard]] const char* to_string(LinkKind kind);
 
-/// A parsed link. For udp/tcp `address` is set (port 1..65535); for serial `device` (an absolute
-/// path such as "/dev/ttyUSB0") and `baud` (a standard termios rate, default 57600) are set.
+/// A parsed link.
+///   udp, tcp      `address` is the vehicle's (port 1..65535); udp may have `bind`, the local
+///                 address to send from (host empty: every interface; port 1..65535).
+///   udpin, tcpin  `address` is the local address to listen on (host empty: every interface).
+///   serial        `device` (an absolute path such as "/dev/ttyUSB0", or COMn on Windows) and
+///                 `baud` (a standard termios rate, default 57600).
 struct LinkUrl {
   LinkKind kind = LinkKind::udp;
   HostPort address;
+  std::optional<HostPort> bind;
   std::string device;
   std::uint32_t baud = 0;
   friend bool operator==(const LinkUrl&, const LinkUrl&) = default;
 };
 
+/// True for the forms that listen (udpin, tcpin): the vehicle speaks first.
+[[nodiscard]] bool listens(const LinkUrl& link);
+
+/// The local address this link must own (udpin, tcpin, udp with `bind`), or nullopt when it takes
+/// an ephemeral port or is serial.
+[[nodiscard]] std::optional<HostPort> local_address(const LinkUrl& link);
+
+/// True when both links must own the same local port of the same protocol (UDP or TCP) on
+/// overlapping addresses (equal, or either one every interface): the second could not bind it.
+[[nodiscard]] bool same_local_port(const LinkUrl& a, const LinkUrl& b);
+
 /// Default serial baud rate when `?baud=` is omitted: 57600, the factory rate of SiK telemetry
 /// radios and of PX4's and ArduPilot's TELEM1 port.
 inline constexpr std::uint32_t kDefaultSerialBaud = 57600;
 
-/// Parses a link URL. Rejects the limited broadcast address 255.255.255.255 and IPv4 multicast
-/// (224.0.0.0/4): pose messages carry no target system, so every listener would fuse them
-/// (protocols/autopilots.md §10). Errors name the problem and the accepted forms.
+/// Parses a link URL. Rejects the limited broadcast address 255.255.255.255 and IPv4/IPv6
+/// multicast as a destination or listening address: pose messages carry no target system, so
+/// every listener would fuse them (protocols/autopilots.md §10). Errors name the problem and the
+/// accepted forms.
 [[nodiscard]] ValueOrError<LinkUrl> parse_link_url(std::string_view text);
 
-/// The canonical URL ("udp://192.168.1.21:14540", "serial:///dev/ttyUSB0?baud=921600"). Two links
-/// are the same endpoint exactly when their canonical forms are equal.
+/// The canonical URL ("udp://192.168.1.21:14540?bind=:14540", "udpin://127.0.0.1:14540",
+/// "serial:///dev/ttyUSB0?baud=921600"). Two links are the same endpoint exactly when their
+/// canonical forms are equal.
 [[nodiscard]] std::string to_string(const LinkUrl& link);
 
 }  // namespace mocaplink::config
