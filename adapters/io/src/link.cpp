@@ -40,12 +40,15 @@ std::uint64_t Link::verified_timestamp_10us() const noexcept {
   return verifier_ ? verifier_->local_timestamp_10us() : 0;
 }
 
-void Link::receive_datagram(std::span<const std::uint8_t> bytes) {
+std::size_t Link::receive_datagram(std::span<const std::uint8_t> bytes) {
   counters_.bytes_received += bytes.size();
   const core::HostTime t = host_now();
+  std::size_t from_vehicle = 0;
   parser_.feed_datagram(bytes, signing_now_10us(), [&](const mavlink::FrameView& frame) {
+    if (!options_.vehicle_system_id || frame.sysid == *options_.vehicle_system_id) ++from_vehicle;
     if (on_frame_) on_frame_(frame, t);
   });
+  return from_vehicle;
 }
 
 void Link::receive_stream(std::span<const std::uint8_t> bytes) {
@@ -67,6 +70,10 @@ void Link::set_state(TransportState state, const std::string& detail) {
   if (state == state_) return;
   state_ = state;
   if (on_state_) on_state_(state, detail);
+}
+
+void Link::report_state(const std::string& detail) {
+  if (on_state_) on_state_(state_, detail);
 }
 
 void Link::set_handlers(FrameHandler on_frame, StateHandler on_state) {

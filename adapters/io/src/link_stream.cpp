@@ -96,13 +96,23 @@ void StreamLink::kick_write() {
   });
 }
 
-void StreamLink::lose_connection(const std::string& why) {
+void StreamLink::reconnect_now(const std::string& why) {
+  if (closing_ || state() == TransportState::closed) return;
+  lose_connection(why, true);
+}
+
+void StreamLink::lose_connection(const std::string& why, bool at_once) {
   end_stream();
   close_transport();
   ++generation_;  // ignore completions of the dead connection
   counters_.dropped_down += backlog_.clear();
   if (closing_) return;
   set_state(TransportState::down, why);
+  if (at_once) {
+    retry_timer_.cancel();
+    open();
+    return;
+  }
   retry_timer_.expires_after(next_backoff());
   retry_timer_.async_wait([this](const std::error_code& e) {
     if (!e) open();
@@ -130,6 +140,7 @@ void StreamLink::finish_close() {
   ++generation_;
   counters_.dropped_down += backlog_.clear();
   close_transport();
+  release();
   set_state(TransportState::closed, "closed");
 }
 

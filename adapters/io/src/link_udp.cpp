@@ -15,25 +15,16 @@
 #include "resolve.hpp"
 
 namespace mocaplink::io {
-namespace {
 
-/// An earlier datagram met an ICMP port unreachable: Linux reports ECONNREFUSED on the connected
-/// socket's next call, Winsock WSAECONNRESET. Either is counted and survived, never fatal.
-bool is_refused(const std::error_code& error) {
-  return error == asio::error::connection_refused || error == asio::error::connection_reset;
-}
+using detail::is_refused;
 
-std::string bracketed(const std::string& host) {
-  return host.find(':') == std::string::npos ? host : "[" + host + "]";
-}
-
-}  // namespace
-
-UdpLink::UdpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options)
+UdpLink::UdpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options,
+                 std::optional<config::HostPort> bind)
     : Link(std::move(options)),
       loop_(loop),
       host_(std::move(host)),
       port_(port),
+      bind_(std::move(bind)),
       socket_(loop),
       retry_timer_(loop) {}
 
@@ -44,7 +35,8 @@ UdpLink::~UdpLink() {
 }
 
 std::string UdpLink::url() const {
-  return "udp://" + bracketed(host_) + ":" + std::to_string(port_);
+  return "udp://" + detail::host_port_text(host_, port_) +
+         (bind_ ? "?bind=" + detail::host_port_text(bind_->host, bind_->port) : "");
 }
 
 asio::ip::udp::endpoint UdpLink::local_endpoint() const {
@@ -78,9 +70,25 @@ void UdpLink::connect(const asio::ip::udp::endpoint& remote) {
   socket_.close(ec);
   socket_.open(remote.protocol(), ec);
   if (!ec) socket_.non_blocking(true, ec);
+  if (!ec && bind_) {
+    const auto local = detail::local_endpoint<asio::ip::udp>(
+        bind_->host, bind_->port, remote.protocol().family() == asio::ip::udp::v6().family(), ec);
+    if (!ec) socket_.bind(local, ec);
+    if (ec) {
+      std::error_code ignored;
+      socket_.close(ignored);
+      schedule_retry("cannot send from " + detail::host_port_text(bind_->host, bind_->port) +
+                     " to " + url() + ": " + ec.message() +
+                     (ec == asio::error::address_in_use
+                          ? " (another program, or another mocaplink process, owns the port)"
+                          : ""));
+      return;
+    }
+  }
   if (!ec) socket_.connect(remote, ec);
   if (ec) {
-    socket_.close(ec);
+    std::error_code ignored;
+    socket_.close(ignored);
     schedule_retry("cannot open a UDP socket to " + url() + ": " + ec.message());
     return;
   }

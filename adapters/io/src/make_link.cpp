@@ -4,7 +4,9 @@
 
 #include "mocaplink/io/link_serial.hpp"
 #include "mocaplink/io/link_tcp.hpp"
+#include "mocaplink/io/link_tcp_in.hpp"
 #include "mocaplink/io/link_udp.hpp"
+#include "mocaplink/io/link_udp_in.hpp"
 
 namespace mocaplink::io {
 
@@ -12,11 +14,17 @@ std::unique_ptr<Link> make_link(asio::io_context& loop, const config::LinkUrl& u
                                 LinkOptions options) {
   switch (url.kind) {
     case config::LinkKind::udp:
-      return std::make_unique<UdpLink>(loop, url.address.host, url.address.port,
-                                       std::move(options));
+      return std::make_unique<UdpLink>(loop, url.address.host, url.address.port, std::move(options),
+                                       url.bind);
+    case config::LinkKind::udpin:
+      return std::make_unique<UdpInLink>(loop, url.address.host, url.address.port,
+                                         std::move(options));
     case config::LinkKind::tcp:
       return std::make_unique<TcpLink>(loop, url.address.host, url.address.port,
                                        std::move(options));
+    case config::LinkKind::tcpin:
+      return std::make_unique<TcpInLink>(loop, url.address.host, url.address.port,
+                                         std::move(options));
     case config::LinkKind::serial:
       break;
   }

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include <asio/error.hpp>
 #include <asio/io_context.hpp>
 #include <asio/ip/address.hpp>
 
@@ -40,6 +41,38 @@ void resolve_async(asio::io_context& loop, const std::string& host, std::uint16_
         for (const auto& entry : results) endpoints.push_back(entry.endpoint());
         handler(error, std::move(endpoints));
       });
+}
+
+}  // namespace mocaplink::io::detail
+
+namespace mocaplink::io::detail {
+
+/// The local endpoint to bind for `host` (an IP literal, or empty for every interface of the
+/// family `v6` selects) and `port`. libs/config admits only literals here; anything else is an
+/// error (asio::error::invalid_argument), never a name lookup.
+template <typename Protocol>
+[[nodiscard]] typename Protocol::endpoint local_endpoint(const std::string& host,
+                                                         std::uint16_t port, bool v6,
+                                                         std::error_code& error) {
+  error.clear();
+  if (host.empty()) {
+    return typename Protocol::endpoint(v6 ? Protocol::v6() : Protocol::v4(), port);
+  }
+  const auto address = asio::ip::make_address(host, error);
+  return typename Protocol::endpoint(address, port);
+}
+
+/// An earlier datagram met an ICMP port unreachable: Linux reports ECONNREFUSED on a connected
+/// socket's next call, Winsock WSAECONNRESET (on an unconnected one too, on its next receive).
+/// Either is counted and survived, never fatal.
+[[nodiscard]] inline bool is_refused(const std::error_code& error) {
+  return error == asio::error::connection_refused || error == asio::error::connection_reset;
+}
+
+/// "host:port" as users write it: brackets around an IPv6 literal, an empty host stays empty.
+[[nodiscard]] inline std::string host_port_text(const std::string& host, std::uint16_t port) {
+  const bool v6 = host.find(':') != std::string::npos;
+  return (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
 }
 
 }  // namespace mocaplink::io::detail

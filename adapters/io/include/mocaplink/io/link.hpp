@@ -1,7 +1,7 @@
 // A vehicle link: the one endpoint through which a vehicle gets its own poses and talks back
 // (DESIGN.md "Data flow"; protocols/autopilots.md §10: one unicast endpoint per vehicle, never a
-// broadcast). Implementations: UdpLink (link_udp.hpp), TcpLink (link_tcp.hpp), SerialLink
-// (link_serial.hpp).
+// broadcast). Implementations: UdpLink (link_udp.hpp), UdpInLink (link_udp_in.hpp), TcpLink
+// (link_tcp.hpp), TcpInLink (link_tcp_in.hpp), SerialLink (link_serial.hpp).
 //
 // Sending takes one complete MAVLink frame per call (already encoded and, if configured, signed).
 // Receiving runs every incoming byte through a mavlink::StreamParser — datagram mode for UDP,
@@ -34,7 +34,8 @@
 namespace mocaplink::io {
 
 /// What a link can currently do.
-///   connecting  opening, resolving or connecting (TCP: first attempt, or waiting to reconnect)
+///   connecting  opening, resolving or connecting (TCP: first attempt, or waiting to reconnect;
+///               udpin/tcpin: listening, the vehicle has not spoken or connected yet)
 ///   up          frames are sent (UDP: the socket is open; whether anyone listens is not known)
 ///   down        cannot send now (TCP disconnected, serial device gone); frames are dropped and
 ///               counted while a retry is scheduled
@@ -86,6 +87,10 @@ struct LinkOptions {
   /// Back-off between reconnect/reopen attempts: starts at the minimum, doubles up to the maximum.
   std::chrono::milliseconds retry_min{250};
   std::chrono::milliseconds retry_max{4000};
+  /// The vehicle's MAVLink system id, when known. A listening link (udpin://) follows only the
+  /// address that frames of this system come from, so that another program on its port (a ground
+  /// station's heartbeat) cannot take the vehicle's poses. Unset: any accepted frame counts.
+  std::optional<std::uint8_t> vehicle_system_id;
 };
 
 class Link {
@@ -131,8 +136,9 @@ class Link {
  protected:
   explicit Link(LinkOptions options);
 
-  /// One UDP datagram in: parsed in datagram mode, accepted frames delivered.
-  void receive_datagram(std::span<const std::uint8_t> bytes);
+  /// One UDP datagram in: parsed in datagram mode, accepted frames delivered. Returns how many of
+  /// them came from the vehicle (LinkOptions::vehicle_system_id; every frame when unset).
+  std::size_t receive_datagram(std::span<const std::uint8_t> bytes);
   /// Stream bytes in (any chunking).
   void receive_stream(std::span<const std::uint8_t> bytes);
   /// The stream ended (connection closed): a partial frame is counted and discarded.
@@ -141,6 +147,9 @@ class Link {
   [[nodiscard]] std::weak_ptr<void> liveness() const { return alive_; }
   /// Changes the state and tells the StateHandler (only when it changes).
   void set_state(TransportState state, const std::string& detail);
+  /// Tells the StateHandler something new about the current state (a listening link's vehicle
+  /// now speaks from another address), without changing it.
+  void report_state(const std::string& detail);
   void set_handlers(FrameHandler on_frame, StateHandler on_state);
   /// Next back-off delay (retry_min, doubling to retry_max); reset_backoff() after a success.
   [[nodiscard]] std::chrono::milliseconds next_backoff() noexcept;

@@ -49,6 +49,11 @@ class StreamLink : public Link {
   virtual void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) = 0;
   /// Close the transport (cancels its pending operations). Must be safe when already closed.
   virtual void close_transport() noexcept = 0;
+  /// The link closed for good (close()): release what outlives one connection (a listener).
+  virtual void release() noexcept {}
+  /// Drops the current connection (as a read error would) and opens again at once, without the
+  /// back-off: a listening link whose vehicle connected anew.
+  void reconnect_now(const std::string& why);
 
   asio::io_context& loop_;
 
@@ -57,7 +62,7 @@ class StreamLink : public Link {
   void on_opened(std::uint64_t generation, const std::error_code& error, const std::string& detail);
   void read();
   void kick_write();
-  void lose_connection(const std::string& why);
+  void lose_connection(const std::string& why, bool at_once = false);
   void finish_close();
 
   LinkBacklog backlog_;

@@ -11,8 +11,9 @@
 
 namespace mocaplink::io {
 
-/// Builds (does not start) the link `url` names, run on `loop`: udp:// → UdpLink, tcp:// →
-/// TcpLink, serial:// → SerialLink. Never fails: a link that cannot open shows it in its state.
+/// Builds (does not start) the link `url` names, run on `loop`: udp:// → UdpLink, udpin:// →
+/// UdpInLink, tcp:// → TcpLink, tcpin:// → TcpInLink, serial:// → SerialLink. Never fails: a link
+/// that cannot open shows it in its state.
 [[nodiscard]] std::unique_ptr<Link> make_link(asio::io_context& loop, const config::LinkUrl& url,
                                               LinkOptions options);
 
