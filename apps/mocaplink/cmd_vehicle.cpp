@@ -1,15 +1,21 @@
 // `mocaplink vehicle setup --config FILE NAME [--apply] [--json] [--timeout S]` (issue 28;
-// docs/setup.md): opens the vehicle's link from the configuration, reads its set-up list as `run`
-// does (core::VehicleSetup) and prints it; with --apply writes the fixes of the wrong items it
-// printed, never to an armed vehicle, and prints the list again. Nothing else is sent but a 1 Hz
-// HEARTBEAT (as the vehicle's component 197, so that a vehicle serving UDP learns where to answer):
-// no pose, no TIMESYNC, no origin (an ArduPilot takes an origin once per boot: only `run` sets it).
+// docs/setup.md): reads the vehicle's set-up list as `run` does (core::VehicleSetup) and prints
+// it; with --apply writes the fixes of the wrong items it printed, never to an armed vehicle, and
+// prints the list again.
+//
+// Who talks to the vehicle: when the configuration's dashboard answers (`mocaplink run` with this
+// configuration owns the vehicle's link), the list is read and the fixes are applied through it —
+// GET /api/vehicles/NAME, POST /api/vehicles/NAME/setup (docs/api.md) — and the link is never
+// opened a second time. Otherwise the command opens the link itself; then nothing else is sent but
+// a 1 Hz HEARTBEAT (as the vehicle's component 197, so that a vehicle serving UDP learns where to
+// answer): no pose, no TIMESYNC, no origin (an ArduPilot takes an origin once per boot: only
+// `run` sets it).
 //
 // Exit codes: 0 nothing blocks; 1 bad command line or configuration; 2 the vehicle was not heard,
-// or answered no parameter read, within --timeout; 3 something blocks (or a write failed).
+// or answered no parameter read, within --timeout (or the dashboard that answered has no such
+// vehicle); 3 something blocks (or a write failed).
 #include <algorithm>
 #include <asio/io_context.hpp>
-#include <asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -17,6 +23,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,13 +37,12 @@
 #include "mocaplink/io/clock.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/web/bridge_views.hpp"
+#include "mocaplink/web/dashboard_client.hpp"
 #include "mocaplink/web/status_json.hpp"
 #include "run_links.hpp"
 
 namespace mocaplink::app {
 namespace {
-
-constexpr auto kTick = std::chrono::milliseconds(100);
 
 struct Options {
   std::string config_path;
@@ -46,64 +52,184 @@ struct Options {
   double timeout_s = 30.0;
 };
 
-std::string format_value(const std::optional<double>& v) {
-  if (!v) return "-";
-  std::ostringstream out;
-  out << *v;
-  return out.str();
-}
-
-/// The list as text: one line per item, the words of the vehicle, the delay.
-void print_text(const web::VehicleView& v) {
-  std::printf("vehicle %s: %s%s, set-up %s\n", v.name.c_str(), v.autopilot.name.c_str(),
-              v.autopilot.version ? (" " + *v.autopilot.version).c_str() : "",
-              v.setup.state.c_str());
-  for (const web::SetupItemView& i : v.setup.items) {
-    const std::string mark = i.status == "ok" ? "ok" : i.severity;
+/// The list as text, from the fields of GET /api/vehicles/NAME (docs/api.md): one line per item,
+/// the words of the vehicle, the delay.
+void print_text(const nlohmann::json& v) {
+  const auto text = [](const nlohmann::json& j, const char* key) {
+    return j.contains(key) && j.at(key).is_string() ? j.at(key).get<std::string>() : std::string();
+  };
+  const auto number = [](const nlohmann::json& j, const char* key) {
+    if (!j.contains(key) || !j.at(key).is_number()) return std::string("-");
+    std::ostringstream out;
+    out << j.at(key).get<double>();
+    return out.str();
+  };
+  const nlohmann::json& autopilot = v.at("autopilot");
+  const nlohmann::json& setup = v.at("setup");
+  const std::string version = text(autopilot, "version");
+  std::printf("vehicle %s: %s%s, set-up %s\n", text(v, "name").c_str(),
+              text(autopilot, "name").c_str(), version.empty() ? "" : (" " + version).c_str(),
+              text(setup, "state").c_str());
+  for (const nlohmann::json& i : setup.at("items")) {
+    const std::string status = text(i, "status");
+    const std::string apply = text(i, "apply");
+    const std::string note = text(i, "apply_note");
     std::printf(
-        "  %-9s %-16s now %-6s needed %s%s\n", mark.c_str(), i.parameter.c_str(),
-        format_value(i.current).c_str(), i.needed.c_str(),
-        i.apply != "none"
-            ? (" [" + i.apply + (i.apply_note.empty() ? "" : ": ") + i.apply_note + "]").c_str()
-            : "");
-    if (i.status != "ok")
-      std::printf("            %s%s\n", i.why.c_str(), i.reboot ? " (after a reboot)" : "");
+        "  %-9s %-16s now %-6s needed %s%s\n",
+        (status == "ok" ? status : text(i, "severity")).c_str(), text(i, "parameter").c_str(),
+        number(i, "current").c_str(), text(i, "needed").c_str(),
+        apply != "none" ? (" [" + apply + (note.empty() ? "" : ": ") + note + "]").c_str() : "");
+    if (status != "ok") {
+      const bool reboot = i.value("reboot", false);
+      std::printf("            %s%s\n", text(i, "why").c_str(), reboot ? " (after a reboot)" : "");
+    }
   }
-  if (!v.delay_ms.parameter.empty() && v.delay_ms.recommended) {
-    std::printf("  delay: %s recommended %s ms (%s)\n", v.delay_ms.parameter.c_str(),
-                format_value(v.delay_ms.recommended).c_str(), v.delay_ms.basis.c_str());
+  const nlohmann::json& delay = v.at("delay_ms");
+  if (!text(delay, "parameter").empty() && number(delay, "recommended") != "-") {
+    std::printf("  delay: %s recommended %s ms (%s)\n", text(delay, "parameter").c_str(),
+                number(delay, "recommended").c_str(), text(delay, "basis").c_str());
   }
-  if (v.estimator && !v.estimator->problems.empty()) {
+  const nlohmann::json& estimator = v.at("estimator");
+  if (estimator.is_object() && !estimator.at("problems").empty()) {
     std::string problems;
-    for (const auto& p : v.estimator->problems) problems += (problems.empty() ? "" : ", ") + p;
-    std::printf("  estimator (%s): %s\n", v.estimator->source.c_str(), problems.c_str());
+    for (const auto& p : estimator.at("problems")) {
+      problems += (problems.empty() ? "" : ", ") + p.get<std::string>();
+    }
+    std::printf("  estimator (%s): %s\n", text(estimator, "source").c_str(), problems.c_str());
   }
-  for (const web::StatusTextView& t : v.statustext) {
-    std::printf("  vehicle says (%s): %s\n", t.severity.c_str(), t.text.c_str());
+  for (const nlohmann::json& t : v.at("statustext")) {
+    std::printf("  vehicle says (%s): %s\n", text(t, "severity").c_str(), text(t, "text").c_str());
   }
-  if (!v.setup.reboot_for.empty()) {
+  if (!setup.at("reboot_for").empty()) {
     std::string names;
-    for (const auto& n : v.setup.reboot_for) names += (names.empty() ? "" : ", ") + n;
+    for (const auto& n : setup.at("reboot_for")) {
+      names += (names.empty() ? "" : ", ") + n.get<std::string>();
+    }
     std::printf("  reboot the vehicle for %s to take effect\n", names.c_str());
   }
 }
 
-/// The fields of GET /api/vehicles/NAME that describe the set-up (docs/api.md).
-void print_json(const web::VehicleView& v) {
-  const nlohmann::json all = v;
+/// The fields of GET /api/vehicles/NAME that describe the set-up (docs/api.md), as one document;
+/// after --apply also `applied`, the parameters written.
+void print_json(const nlohmann::json& all, const std::vector<std::string>* applied) {
   nlohmann::json out;
-  out["name"] = v.name;
+  out["name"] = all.at("name");
   for (const char* key : {"autopilot", "setup", "statustext", "estimator", "delay_ms"}) {
     out[key] = all.at(key);
   }
+  if (applied != nullptr) out["applied"] = *applied;
   std::printf("%s\n", out.dump(2).c_str());
 }
 
-class SetupSession {
+struct ApplyAnswer {
+  bool accepted = false;
+  std::string message;  ///< what will be written, or why not
+};
+
+/// What the command talks to: the vehicle over its own link (LinkPeer), or `mocaplink run`
+/// through its dashboard (DaemonPeer). Both give the vehicle as GET /api/vehicles/NAME shows it.
+class SetupPeer {
  public:
-  SetupSession(const config::Vehicle& vehicle, const Options& options)
-      : options_(options),
-        vehicle_(vehicle),
+  virtual ~SetupPeer() = default;
+  /// Lets about one tick pass; returns the vehicle's view, or nullopt with `error` (exit 2).
+  virtual std::optional<nlohmann::json> step(std::string& error) = 0;
+  virtual ApplyAnswer apply(const std::vector<std::string>& names) = 0;
+  /// Why the vehicle has not been heard, after `timeout_s`.
+  [[nodiscard]] virtual std::string unheard(double timeout_s) const = 0;
+};
+
+/// The flow both peers share: wait for the list, print it, apply, wait for the writes, print.
+class SetupFlow {
+ public:
+  SetupFlow(SetupPeer& peer, const Options& options) : peer_(peer), options_(options) {}
+
+  int run() {
+    const auto started = std::chrono::steady_clock::now();
+    std::optional<std::chrono::steady_clock::time_point> applied_at;
+    while (true) {
+      std::string error;
+      const auto v = peer_.step(error);
+      if (!v) return fail(2, error);
+      const std::string state = v->at("setup").at("state").get<std::string>();
+      const bool listed = state == "ready" || state == "blocked";
+      const auto now = std::chrono::steady_clock::now();
+      const bool timed_out =
+          std::chrono::duration<double>(now - (applied_at ? *applied_at : started)).count() >
+          options_.timeout_s;
+      if (!applied_at && !listed) {
+        if (state == "no answer" || state == "unsupported" || (timed_out && state != "waiting")) {
+          report(*v);
+          return fail(2, state == "unsupported"
+                             ? "no set-up rules for this autopilot (only PX4 and ArduPilot)"
+                             : "the vehicle answered no parameter read");
+        }
+        if (timed_out) return fail(2, peer_.unheard(options_.timeout_s));
+        continue;
+      }
+      if (!options_.apply) {
+        report(*v);
+        return state == "blocked" ? 3 : 0;
+      }
+      if (!applied_at) {
+        for (const auto& i : v->at("setup").at("items")) {
+          if (i.at("status") == "wrong" && !i.at("fix").is_null()) {
+            names_.push_back(i.at("parameter").get<std::string>());
+          }
+        }
+        if (!options_.json) print_text(*v);  // what will be written, as it stands
+        if (names_.empty()) {
+          if (options_.json) print_json(*v, &names_);
+          return state == "blocked" ? 3 : 0;
+        }
+        const ApplyAnswer r = peer_.apply(names_);
+        std::fprintf(stderr, "mocaplink vehicle setup: %s\n", r.message.c_str());
+        if (!r.accepted) {
+          if (options_.json) print_json(*v, nullptr);
+          return 3;
+        }
+        applied_at = now;
+        continue;
+      }
+      bool failed = false;
+      bool pending = false;
+      for (const auto& i : v->at("setup").at("items")) {
+        const bool named = std::find(names_.begin(), names_.end(),
+                                     i.at("parameter").get<std::string>()) != names_.end();
+        const std::string apply = i.at("apply").get<std::string>();
+        pending = pending || (named && (apply == "pending" || apply == "none"));
+        failed = failed || apply == "failed";
+      }
+      if (pending && !timed_out) continue;  // writes still going
+      report(*v);
+      if (pending) return fail(3, "the writes were not confirmed within the timeout");
+      return state == "blocked" || failed ? 3 : 0;
+    }
+  }
+
+ private:
+  void report(const nlohmann::json& v) const {
+    if (options_.json) {
+      print_json(v, options_.apply ? &names_ : nullptr);
+    } else {
+      print_text(v);
+    }
+  }
+
+  static int fail(int code, const std::string& message) {
+    if (!message.empty()) std::fprintf(stderr, "mocaplink vehicle setup: %s\n", message.c_str());
+    return code;
+  }
+
+  SetupPeer& peer_;
+  const Options& options_;
+  std::vector<std::string> names_;  // the fixes asked for
+};
+
+/// The vehicle over the link the configuration names, opened by this process.
+class LinkPeer final : public SetupPeer {
+ public:
+  explicit LinkPeer(const config::Vehicle& vehicle)
+      : vehicle_(vehicle),
         state_([&] {
           core::VehicleStateConfig c;
           c.system_id = vehicle.spec.system_id;
@@ -118,29 +244,64 @@ class SetupSession {
           c.signing_key = vehicle.spec.signing_key;
           c.signing_link_id = 1;
           return c;
-        }()),
-        timer_(loop_) {}
-
-  int run() {
+        }()) {
     link_ = make_vehicle_link(loop_, vehicle_);
     link_.link->start(
-        [this](const mavlink::FrameView& frame, core::HostTime t) { on_frame(frame, t); }, {});
-    started_ = io::host_now();
-    schedule();
-    loop_.run();
+        [this](const mavlink::FrameView& frame, core::HostTime t) { on_frame(frame, t); },
+        [this](io::TransportState state, const std::string& detail) {
+          link_detail_ = std::string(io::to_string(state)) + ": " + detail;
+        });
+  }
+  ~LinkPeer() override {
     link_.link->close(std::chrono::milliseconds(200));
-    return exit_code_;
+    loop_.run_for(std::chrono::milliseconds(200));  // the linger: queued frames leave
+  }
+  LinkPeer(const LinkPeer&) = delete;
+  LinkPeer& operator=(const LinkPeer&) = delete;
+
+  std::optional<nlohmann::json> step(std::string& /*error*/) override {
+    loop_.run_for(kTick);
+    const core::HostTime now = io::host_now();
+    (void)state_.on_tick(now);
+    const core::VehicleSnapshot heard = state_.snapshot();
+    core::SetupTarget target;
+    target.alive = heard.link == core::HeartbeatState::alive;
+    if (heard.heartbeat) {
+      target.autopilot = heard.heartbeat->autopilot;
+      target.compid = heard.heartbeat->compid;
+      target.armed = heard.heartbeat->armed;
+    }
+    std::vector<mavlink::Message> out;
+    std::vector<std::string> notes;
+    setup_.on_tick(now, target, core::DelayInputs{}, out, notes);
+    send(out, now);
+    return nlohmann::json(view(now));
+  }
+
+  ApplyAnswer apply(const std::vector<std::string>& names) override {
+    const core::SetupRequestResult r = setup_.apply(names, io::host_now());
+    return {r.accepted, r.message};
+  }
+
+  [[nodiscard]] std::string unheard(double timeout_s) const override {
+    const std::string url = link_.link->url();
+    std::ostringstream seconds;
+    seconds << timeout_s;
+    // PX4 sends to the first address that spoke to its UDP port since it booted (seen with PX4
+    // 1.14 SITL: a second process on the same boot heard nothing), unless every process speaks
+    // from the same address (docs/config.md "Links").
+    const bool plain_udp = vehicle_.link.kind == config::LinkKind::udp && !vehicle_.link.bind;
+    return "no HEARTBEAT from the vehicle within " + seconds.str() + " s on " + url +
+           (link_detail_.empty() ? "" : " (link " + link_detail_ + ")") +
+           (plain_udp ? "; a PX4 answers only the first address that spoke to its UDP port since "
+                        "it booted: if another program or mocaplink process did, restart the "
+                        "vehicle, or give the link a fixed local port (?bind=) or listen with "
+                        "udpin:// so that every mocaplink process is heard (docs/config.md)"
+                      : "");
   }
 
  private:
-  void schedule() {
-    timer_.expires_after(kTick);
-    timer_.async_wait([this](const asio::error_code& ec) {
-      if (ec) return;
-      tick();
-      if (!done_) schedule();
-    });
-  }
+  static constexpr auto kTick = std::chrono::milliseconds(100);
 
   void on_frame(const mavlink::FrameView& frame, core::HostTime t) {
     const auto message = mavlink::decode_message(frame);
@@ -177,106 +338,109 @@ class SetupSession {
     return v;
   }
 
-  void finish(int code, const std::string& message) {
-    if (!message.empty()) std::fprintf(stderr, "mocaplink vehicle setup: %s\n", message.c_str());
-    exit_code_ = code;
-    done_ = true;
-    loop_.stop();
-  }
-
-  void tick() {
-    const core::HostTime now = io::host_now();
-    (void)state_.on_tick(now);
-    const core::VehicleSnapshot heard = state_.snapshot();
-    core::SetupTarget target;
-    target.alive = heard.link == core::HeartbeatState::alive;
-    if (heard.heartbeat) {
-      target.autopilot = heard.heartbeat->autopilot;
-      target.compid = heard.heartbeat->compid;
-      target.armed = heard.heartbeat->armed;
-    }
-    std::vector<mavlink::Message> out;
-    std::vector<std::string> notes;
-    setup_.on_tick(now, target, core::DelayInputs{}, out, notes);
-    send(out, now);
-    const core::SetupState s = setup_.state();
-    const bool listed = s == core::SetupState::ready || s == core::SetupState::blocked;
-    const bool timed_out = core::to_seconds(now - started_) > options_.timeout_s;
-    if (!listed) {
-      if (s == core::SetupState::no_answer || s == core::SetupState::unsupported ||
-          (timed_out && s != core::SetupState::waiting)) {
-        report(now);
-        finish(2, s == core::SetupState::unsupported
-                      ? "no set-up rules for this autopilot (only PX4 and ArduPilot)"
-                      : "the vehicle answered no parameter read");
-      } else if (timed_out) {
-        const std::string url = link_.link->url();
-        // PX4 sends to the first address that spoke to its UDP port since it booted (seen with
-        // PX4 1.14 SITL: a second process on the same boot heard nothing).
-        finish(2, "no HEARTBEAT from the vehicle within " + format_value(options_.timeout_s) +
-                      " s on " + url +
-                      (url.rfind("udp://", 0) == 0
-                           ? " (a PX4 answers only the first address that spoke to its UDP port "
-                             "since it booted: if another program or mocaplink process did, "
-                             "restart the vehicle or stop that one)"
-                           : std::string()));
-      }
-      return;
-    }
-    if (options_.apply && !applied_) {
-      applied_ = true;
-      const web::VehicleView v = view(now);
-      std::vector<std::string> names;
-      for (const auto& i : v.setup.items) {
-        if (i.status == "wrong" && i.fix) names.push_back(i.parameter);
-      }
-      report(now);  // what will be written, as it stands
-      if (names.empty()) {
-        finish(s == core::SetupState::blocked ? 3 : 0, "");
-        return;
-      }
-      const core::SetupRequestResult r = setup_.apply(names, now);
-      std::fprintf(stderr, "mocaplink vehicle setup: %s\n", r.message.c_str());
-      if (!r.accepted) finish(3, "");
-      return;
-    }
-    if (applied_) {
-      const web::VehicleView v = view(now);
-      for (const auto& i : v.setup.items) {
-        if (i.apply == "pending") return;  // writes still going
-      }
-      report(now);
-      bool failed = false;
-      for (const auto& i : v.setup.items) failed = failed || i.apply == "failed";
-      finish(s == core::SetupState::blocked || failed ? 3 : 0, "");
-      return;
-    }
-    report(now);
-    finish(s == core::SetupState::blocked ? 3 : 0, "");
-  }
-
-  void report(core::HostTime now) const {
-    const web::VehicleView v = view(now);
-    if (options_.json) {
-      print_json(v);
-    } else {
-      print_text(v);
-    }
-  }
-
-  const Options& options_;
   const config::Vehicle& vehicle_;
   asio::io_context loop_;
   core::VehicleState state_;
   core::VehicleSetup setup_;
   core::Sender sender_;
-  asio::steady_timer timer_;
   VehicleLink link_;
-  core::HostTime started_{};
-  bool applied_ = false;
-  bool done_ = false;
-  int exit_code_ = 2;
+  std::string link_detail_;  // the link's last state and why
 };
+
+/// `mocaplink run` with this configuration, through its dashboard: it owns the vehicle's link.
+class DaemonPeer final : public SetupPeer {
+ public:
+  DaemonPeer(web::DashboardClient& client, std::string name)
+      : client_(client), path_("/api/vehicles/" + std::move(name)) {}
+
+  std::optional<nlohmann::json> step(std::string& error) override {
+    std::this_thread::sleep_for(kPoll);
+    auto answer = client_.get(path_, error);
+    if (!answer) {
+      error = "the dashboard at " + client_.address() + " stopped answering: " + error;
+      return std::nullopt;
+    }
+    if (answer->status != 200) {
+      error = "the dashboard at " + client_.address() + " answered GET " + path_ + " with " +
+              std::to_string(answer->status) + ": " + error_text(answer->body);
+      return std::nullopt;
+    }
+    last_ = nlohmann::json::parse(answer->body, nullptr, false);
+    if (last_.is_discarded() || !last_.is_object() || !last_.contains("setup")) {
+      error = "the dashboard at " + client_.address() + " answered GET " + path_ +
+              " with something that is not a vehicle";
+      return std::nullopt;
+    }
+    return last_;
+  }
+
+  ApplyAnswer apply(const std::vector<std::string>& names) override {
+    std::string error;
+    const nlohmann::json body = {{"apply", names}};
+    const auto answer = client_.post_json(path_ + "/setup", body.dump(), error);
+    if (!answer) return {false, "the dashboard at " + client_.address() + ": " + error};
+    if (answer->status != 200) {
+      return {false, "mocaplink run refused the writes (" + std::to_string(answer->status) +
+                         "): " + error_text(answer->body)};
+    }
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    return {true, "mocaplink run writes " + list};
+  }
+
+  [[nodiscard]] std::string unheard(double timeout_s) const override {
+    std::ostringstream seconds;
+    seconds << timeout_s;
+    const auto text = [this](const char* key) {
+      return last_.contains(key) && last_.at(key).is_string() ? last_.at(key).get<std::string>()
+                                                              : std::string("?");
+    };
+    return "mocaplink run has not heard the vehicle within " + seconds.str() + " s on " +
+           text("link") + " (link " + text("link_state") + ")";
+  }
+
+  /// The error text of a JSON error answer (docs/api.md "Errors"), or the body itself.
+  static std::string error_text(const std::string& body) {
+    const auto j = nlohmann::json::parse(body, nullptr, false);
+    if (j.is_object() && j.contains("error") && j.at("error").is_string()) {
+      return j.at("error").get<std::string>();
+    }
+    return body.substr(0, 200);
+  }
+
+ private:
+  static constexpr auto kPoll = std::chrono::milliseconds(200);
+  web::DashboardClient& client_;
+  std::string path_;
+  nlohmann::json last_;
+};
+
+/// Through `mocaplink run` when the configuration's dashboard answers for this vehicle; nullopt
+/// when nothing answers there (then this process opens the link itself).
+std::optional<int> setup_through_daemon(const config::Config& cfg, const config::Vehicle& vehicle,
+                                        const Options& options) {
+  web::DashboardClient client(cfg.http, std::chrono::milliseconds(2000));
+  std::string error;
+  const std::string path = "/api/vehicles/" + vehicle.spec.name;
+  const auto answer = client.get(path, error);
+  if (!answer) return std::nullopt;  // no daemon: open the link here
+  if (answer->status != 200) {
+    std::fprintf(stderr,
+                 "mocaplink vehicle setup: the dashboard at %s (mocaplink run, by this "
+                 "configuration's [http] listen) answered GET %s with %d: %s; the link is left to "
+                 "it\n",
+                 client.address().c_str(), path.c_str(), answer->status,
+                 DaemonPeer::error_text(answer->body).c_str());
+    return 2;
+  }
+  std::fprintf(stderr,
+               "mocaplink vehicle setup: mocaplink run owns the link of %s: reading%s through its "
+               "dashboard at %s\n",
+               vehicle.spec.name.c_str(), options.apply ? " and applying" : "",
+               client.address().c_str());
+  DaemonPeer peer(client, vehicle.spec.name);
+  return SetupFlow(peer, options).run();
+}
 
 int run_vehicle_setup(const Options& options, const sources::SourceRegistry& sources) {
   std::ifstream in(options.config_path, std::ios::binary);
@@ -292,8 +456,9 @@ int run_vehicle_setup(const Options& options, const sources::SourceRegistry& sou
   const config::Config& cfg = *result.config;
   for (const auto& v : cfg.vehicles) {
     if (v.spec.name != options.name) continue;
-    SetupSession session(v, options);
-    return session.run();
+    if (const auto code = setup_through_daemon(cfg, v, options)) return *code;
+    LinkPeer peer(v);
+    return SetupFlow(peer, options).run();
   }
   std::string names;
   for (const auto& v : cfg.vehicles) names += (names.empty() ? "" : ", ") + v.spec.name;
@@ -317,7 +482,8 @@ void add_vehicle_commands(CLI::App& app, ExitCode& exit_code,
   setup->add_option("NAME", opts->name, "the [[vehicle]] name")->required();
   setup->add_flag("--apply", opts->apply,
                   "write the fixes of the wrong items listed (never to an armed vehicle)");
-  setup->add_flag("--json", opts->json, "print the fields of GET /api/vehicles/NAME instead");
+  setup->add_flag("--json", opts->json,
+                  "print the fields of GET /api/vehicles/NAME instead, as one JSON document");
   setup->add_option("--timeout", opts->timeout_s, "seconds to wait for the vehicle")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 600.0));

@@ -11,79 +11,11 @@
 'use strict';
 
 const path = require('node:path');
-const { MavLinkProtocolV2, common, minimal, standard } = require('node-mavlink');
+const { MavLinkProtocolV2, common } = require('node-mavlink');
 const h = require('./harness');
 
 const { assert, ID } = h;
-const PARAM_REQUEST_READ = 20;
-const PARAM_SET = 23;
-const REQUEST_MESSAGE = 512;
-const INT32 = 6;
-const REAL32 = 9;
-
-const f32 = (bits) => new Float32Array(new Int32Array([bits]).buffer)[0];
-const i32 = (float) => new Int32Array(new Float32Array([float]).buffer)[0];
-
-function scriptedPx4(vehicle, sysid) {
-  const s = {
-    params: new Map([
-      ['EKF2_EV_CTRL', [0, INT32]], ['EKF2_HGT_REF', [1, INT32]], ['EKF2_GPS_CTRL', [0, INT32]],
-      ['EKF2_MAG_TYPE', [5, INT32]], ['EKF2_EV_DELAY', [0, REAL32]],
-    ]),
-    reads: [], sets: [], versionRequests: 0, armed: false,
-  };
-  let seq = 0;
-  const send = (m) => vehicle.send(new MavLinkProtocolV2(sysid, 1).serialize(m, seq++ & 255));
-  const value = (name) => {
-    const [v, type] = s.params.get(name);
-    const m = new common.ParamValue();
-    m.paramId = name;
-    m.paramType = type;
-    m.paramValue = type === REAL32 ? v : f32(v);
-    m.paramCount = 1000;
-    m.paramIndex = 42;
-    return m;
-  };
-  vehicle.decoder.parser.on('data', (packet) => {
-    const m = h.decode(packet);
-    const id = packet.header.msgid;
-    if (id === ID.COMMAND_LONG && m.command === REQUEST_MESSAGE && Math.round(m._param1) === 148) {
-      s.versionRequests += 1;
-      const v = new standard.AutopilotVersion();
-      v.capabilities = 2n | 16n;  // PARAM_FLOAT | PARAM_ENCODE_BYTEWISE, as PX4 1.14 sets them
-      v.flightSwVersion = (1 << 24) | (14 << 16) | (3 << 8) | 255;
-      send(v);
-    } else if (id === PARAM_REQUEST_READ) {
-      const name = m.paramId.replace(/\0+$/, '');
-      s.reads.push({ name, target: [m.targetSystem, m.targetComponent], index: m.paramIndex });
-      if (s.params.has(name)) send(value(name));
-    } else if (id === PARAM_SET) {
-      const name = m.paramId.replace(/\0+$/, '');
-      s.sets.push({ name, raw: m.paramValue, type: m.paramType, target: [m.targetSystem, m.targetComponent] });
-      const [, type] = s.params.get(name);
-      s.params.set(name, [type === REAL32 ? m.paramValue : i32(m.paramValue), type]);
-      send(value(name));
-    }
-  });
-  const heartbeat = new minimal.Heartbeat();
-  heartbeat.type = 2;        // quadrotor
-  heartbeat.autopilot = 12;  // PX4
-  heartbeat.systemStatus = 3;
-  heartbeat.mavlinkVersion = 3;
-  let beats = 0;
-  s.timer = setInterval(() => {
-    heartbeat.baseMode = s.armed ? 128 : 0;
-    send(heartbeat);
-    beats += 1;
-    if (beats === 4) {
-      const t = new common.StatusText();
-      t.severity = 4;  // warning
-      t.text = 'Preflight Fail: ekf2 missing data';
-      send(t);
-    }
-  }, 250);
-  return s;
-}
+const { INT32, i32, f32, scriptedPx4 } = require('./scripted_px4');
 
 async function main() {
   const dir = h.tempDir('setup');
