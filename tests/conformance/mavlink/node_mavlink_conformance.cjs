@@ -15,6 +15,7 @@ const os = require('node:os');
 const path = require('node:path');
 const { Readable } = require('node:stream');
 const mavlink = require('node-mavlink');
+const { makeChecker, makeRandom, INT_RANGES } = require('./support.cjs');
 
 const bin = process.argv[2];
 if (!bin) throw new Error('usage: node_mavlink_conformance.cjs PATH_TO_MOCAPLINK');
@@ -30,31 +31,9 @@ const key = Buffer.from(golden.key_hex, 'hex');
 const tmp = fs.mkdtempSync(path.join(os.tmpdir(), 'mocaplink-conf-'));
 const SAMPLES = 25;
 
-let failures = 0;
-let checks = 0;
-function check(ok, what) {
-  checks++;
-  if (!ok) {
-    failures++;
-    if (failures <= 30) console.error('FAIL:', what);
-  }
-}
-
-// Deterministic PRNG (mulberry32), fixed seed.
-let seed = 0x5eed1234;
-function rand() {
-  seed = (seed + 0x6d2b79f5) | 0;
-  let t = seed;
-  t = Math.imul(t ^ (t >>> 15), t | 1);
-  t ^= t + Math.imul(t ^ (t >>> 7), t | 61);
-  return ((t ^ (t >>> 14)) >>> 0) / 4294967296;
-}
+const { check, finish } = makeChecker();
+const rand = makeRandom(0x5eed1234);
 const pick = (a) => a[Math.floor(rand() * a.length)];
-
-const INT_RANGES = {
-  int8_t: [-128, 127], uint8_t: [0, 255], uint8_t_mavlink_version: [0, 255], int16_t: [-32768, 32767],
-  uint16_t: [0, 65535], int32_t: [-2147483648, 2147483647], uint32_t: [0, 4294967295],
-};
 
 // A random value for one element: { node: value for node-mavlink, json: value for our JSON }.
 function randomElement(type) {
@@ -251,8 +230,7 @@ function nodeToOurs() {
   } finally {
     fs.rmSync(tmp, { recursive: true, force: true });
   }
-  console.log(`node-mavlink conformance: ${checks - failures}/${checks} checks passed`);
-  process.exit(failures === 0 ? 0 : 1);
+  finish('node-mavlink conformance');
 })().catch((e) => {
   console.error(e);
   process.exit(1);
