@@ -1,0 +1,66 @@
+#include "mocaplink/io/poses_first.hpp"
+
+#include <algorithm>
+
+namespace mocaplink::io {
+
+PosesFirst::PosesFirst(Options options) : options_(options) {}
+
+std::chrono::nanoseconds PosesFirst::air_time(std::size_t bytes) const {
+  if (options_.bytes_per_second <= 0.0) return std::chrono::nanoseconds{0};
+  return std::chrono::nanoseconds(
+      static_cast<std::int64_t>(static_cast<double>(bytes) * 1e9 / options_.bytes_per_second));
+}
+
+void PosesFirst::occupy(std::size_t bytes, core::HostTime now) {
+  busy_until_ = std::max(busy_until_, now) + air_time(bytes);
+}
+
+void PosesFirst::on_own_write(std::size_t bytes, core::HostTime now) {
+  counters_.own_bytes += bytes;
+  last_own_ = now;
+  occupy(bytes, now);
+}
+
+bool PosesFirst::push(std::span<const std::uint8_t> frame) {
+  if (queued_bytes_ + frame.size() > options_.max_queue_bytes) {
+    ++counters_.dropped_full;
+    return false;
+  }
+  queue_.emplace_back(frame.begin(), frame.end());
+  queued_bytes_ += frame.size();
+  ++counters_.queued;
+  return true;
+}
+
+std::optional<std::vector<std::uint8_t>> PosesFirst::next(core::HostTime now,
+                                                          core::HostTime& retry_at) {
+  if (queue_.empty()) return std::nullopt;
+  const std::vector<std::uint8_t>& frame = queue_.front();
+  if (options_.bytes_per_second > 0.0 && pose_period_.count() > 0 && last_own_) {
+    const core::HostTime due = *last_own_ + pose_period_ - pose_period_ / 10;
+    const bool poses_flowing = now - *last_own_ < pose_period_ * 3 / 2;
+    const core::HostTime done = std::max(busy_until_, now) + air_time(frame.size());
+    if (poses_flowing && done > due) {
+      // After the next pose has gone (or when it is overdue).
+      retry_at = std::max(due + pose_period_ / 10, now + std::chrono::milliseconds(1));
+      return std::nullopt;
+    }
+  }
+  std::vector<std::uint8_t> out = std::move(queue_.front());
+  queue_.pop_front();
+  queued_bytes_ -= out.size();
+  ++counters_.handed_out;
+  counters_.bytes_handed_out += out.size();
+  occupy(out.size(), now);
+  return out;
+}
+
+std::uint64_t PosesFirst::clear() noexcept {
+  const std::uint64_t n = queue_.size();
+  queue_.clear();
+  queued_bytes_ = 0;
+  return n;
+}
+
+}  // namespace mocaplink::io
