@@ -1,6 +1,7 @@
 // `mocaplink check FILE`: validates a configuration without running anything. Prints every error
 // (stderr, "FILE:LINE:COL: key: message") and exits 1, or prints a summary (stdout) and exits 0.
 // `run` joins this file with issue 5.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -48,6 +49,29 @@ void print_summary(const config::Config& cfg) {
                 static_cast<unsigned>(v.spec.system_id),
                 std::string(core::to_string(v.spec.profile)).c_str(), v.spec.rate_hz,
                 v.spec.signing_key ? ", signed" : "", v.spec.enabled ? "" : ", disabled");
+  }
+  // Ground stations share the vehicle's link: what it carries, and what is left once mocaplink's
+  // own traffic (poses first) is served (issue 38; docs/config.md "Ground stations").
+  for (const auto& v : cfg.vehicles) {
+    if (v.gcs.empty()) continue;
+    std::string endpoints;
+    for (const auto& g : v.gcs) endpoints += (endpoints.empty() ? "" : ", ") + config::to_string(g);
+    std::printf("  %s: ground stations at %s\n", v.spec.name.c_str(), endpoints.c_str());
+    const double own =
+        core::link_bytes_per_second(core::messages_for(v.spec.profile, v.spec.messages),
+                                    v.spec.rate_hz, v.spec.signing_key.has_value());
+    if (v.link.kind == config::LinkKind::serial) {
+      const double capacity = core::serial_bytes_per_second(v.link.baud);
+      std::printf(
+          "  %s: link budget %.0f bytes/s (%u baud); mocaplink uses up to %.0f, ground stations "
+          "get the rest (%.0f), poses first\n",
+          v.spec.name.c_str(), capacity, v.link.baud, own, std::max(0.0, capacity - own));
+    } else {
+      std::printf(
+          "  %s: link budget not known (%s); mocaplink uses up to %.0f bytes/s, ground stations "
+          "what the network carries besides, poses first\n",
+          v.spec.name.c_str(), config::to_string(v.link.kind), own);
+    }
   }
   // The vision profiles send the same ODOMETRY; auto also checks the set-up by the rules of the
   // autopilot the vehicle turns out to run (docs/setup.md).

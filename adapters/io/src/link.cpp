@@ -87,6 +87,16 @@ std::chrono::milliseconds Link::next_backoff() noexcept {
   return backoff_;
 }
 
+bool Link::send_forwarded(std::span<const std::uint8_t> frame) {
+  if (!send(frame)) {
+    ++counters_.forwarded_dropped;
+    return false;
+  }
+  ++counters_.forwarded_sent;
+  counters_.forwarded_bytes += frame.size();
+  return true;
+}
+
 std::size_t Link::send_batch(std::span<const std::span<const std::uint8_t>> frames) {
   std::size_t sent = 0;
   for (const auto& frame : frames) sent += send(frame) ? 1U : 0U;

@@ -1,5 +1,7 @@
 #include "mocaplink/io/link_serial.hpp"
 
+#include "unsent.hpp"
+
 #ifndef _WIN32
 #include <termios.h>
 #endif
@@ -39,7 +41,10 @@ std::error_code make_raw(int fd) {
 
 SerialLink::SerialLink(asio::io_context& loop, std::string device, std::uint32_t baud,
                        LinkOptions options)
-    : StreamLink(loop, std::move(options)), device_(std::move(device)), baud_(baud), port_(loop) {}
+    : StreamLink(loop, std::move(options), static_cast<double>(baud) / 10.0),  // 8N1: 10 bits
+      device_(std::move(device)),
+      baud_(baud),
+      port_(loop) {}
 
 SerialLink::~SerialLink() {
   close_transport();
@@ -81,6 +86,11 @@ void SerialLink::async_read_some(std::span<std::uint8_t> buffer, IoHandler done)
 void SerialLink::close_transport() noexcept {
   std::error_code ignored;
   port_.close(ignored);
+}
+
+std::optional<std::size_t> SerialLink::unsent_bytes() const noexcept {
+  if (!port_.is_open()) return std::nullopt;
+  return detail::unsent_bytes(const_cast<decltype(port_)&>(port_).native_handle());
 }
 
 }  // namespace mocaplink::io

@@ -1,18 +1,26 @@
 #include "mocaplink/io/link_stream.hpp"
 
+#include <algorithm>
 #include <utility>
+
+#include "mocaplink/io/clock.hpp"
 
 namespace mocaplink::io {
 
-StreamLink::StreamLink(asio::io_context& loop, LinkOptions options)
+StreamLink::StreamLink(asio::io_context& loop, LinkOptions options, double bytes_per_second)
     : Link(std::move(options)),
       loop_(loop),
       backlog_(options_.max_backlog_bytes),
+      bytes_per_second_(bytes_per_second),
+      gate_(PosesFirst::Options{.bytes_per_second = bytes_per_second,
+                                .max_queue_bytes = options_.max_backlog_bytes}),
       retry_timer_(loop),
+      forward_timer_(loop),
       linger_timer_(loop) {}
 
 StreamLink::~StreamLink() {
   retry_timer_.cancel();
+  forward_timer_.cancel();
   linger_timer_.cancel();
 }
 
@@ -71,8 +79,55 @@ bool StreamLink::send(std::span<const std::uint8_t> frame) {
     ++counters_.dropped_backlog;
     return false;
   }
+  gate_.on_own_write(frame.size(), host_now());
   kick_write();
   return true;
+}
+
+bool StreamLink::send_forwarded(std::span<const std::uint8_t> frame) {
+  if (state() != TransportState::up || closing_) {
+    ++counters_.dropped_down;
+    ++counters_.forwarded_dropped;
+    return false;
+  }
+  if (!gate_.push(frame)) {
+    ++counters_.forwarded_dropped;
+    return false;
+  }
+  pump_forwarded();
+  return true;
+}
+
+void StreamLink::pump_forwarded() {
+  if (gate_.empty() || state() != TransportState::up || closing_) return;
+  if (backlog_.writing() || backlog_.has_pending()) return;  // kick_write calls again when done
+  const core::HostTime now = host_now();
+  const auto again_in = [this](core::HostTime::duration delay) {
+    forward_timer_.expires_after(std::max(delay, core::HostTime::duration{0}));
+    forward_timer_.async_wait([this](const std::error_code& e) {
+      if (!e) pump_forwarded();
+    });
+  };
+  // What the OS still holds (a TCP send buffer can hold seconds of a slow Wi-Fi's traffic, a
+  // tty's buffer a few KiB): a forwarded frame is added only when at most one frame waits there,
+  // so that a pose written next is not queued behind ground-station traffic.
+  if (const auto unsent = unsent_bytes(); unsent && *unsent > mavlink::kMaxFrameSize) {
+    again_in(kUnsentPoll);
+    return;
+  }
+  core::HostTime retry_at{};
+  auto frame = gate_.next(now, retry_at);
+  if (!frame) {
+    if (!gate_.empty()) again_in(retry_at - now);
+    return;
+  }
+  if (!backlog_.append(*frame)) {  // only a frame larger than the whole backlog
+    ++counters_.forwarded_dropped;
+    return;
+  }
+  ++counters_.forwarded_sent;
+  counters_.forwarded_bytes += frame->size();
+  kick_write();
 }
 
 void StreamLink::kick_write() {
@@ -92,6 +147,7 @@ void StreamLink::kick_write() {
     counters_.frames_sent += backlog_.finish_write();
     counters_.bytes_sent += size;
     kick_write();
+    pump_forwarded();
     if (closing_ && !backlog_.writing()) finish_close();
   });
 }
@@ -106,6 +162,8 @@ void StreamLink::lose_connection(const std::string& why, bool at_once) {
   close_transport();
   ++generation_;  // ignore completions of the dead connection
   counters_.dropped_down += backlog_.clear();
+  counters_.forwarded_dropped += gate_.clear();
+  forward_timer_.cancel();
   if (closing_) return;
   set_state(TransportState::down, why);
   if (at_once) {
@@ -139,6 +197,8 @@ void StreamLink::finish_close() {
   linger_timer_.cancel();
   ++generation_;
   counters_.dropped_down += backlog_.clear();
+  counters_.forwarded_dropped += gate_.clear();
+  forward_timer_.cancel();
   close_transport();
   release();
   set_state(TransportState::closed, "closed");

@@ -7,6 +7,7 @@
 #include <asio/write.hpp>
 
 #include "resolve.hpp"
+#include "unsent.hpp"
 
 namespace mocaplink::io {
 
@@ -64,6 +65,11 @@ void TcpLink::close_transport() noexcept {
   std::error_code ignored;
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
+}
+
+std::optional<std::size_t> TcpLink::unsent_bytes() const noexcept {
+  if (!socket_.is_open()) return std::nullopt;
+  return detail::unsent_bytes(const_cast<decltype(socket_)&>(socket_).native_handle());
 }
 
 }  // namespace mocaplink::io

@@ -7,6 +7,7 @@
 #include <asio/write.hpp>
 
 #include "resolve.hpp"
+#include "unsent.hpp"
 
 namespace mocaplink::io {
 namespace {
@@ -85,10 +86,9 @@ void TcpInLink::adopt(OpenHandler done) {
   pending_ = asio::ip::tcp::socket(loop_);
   std::error_code ignored;
   socket_.set_option(asio::ip::tcp::no_delay(true), ignored);  // a pose leaves now (tcp.hpp)
-  asio::post(loop_, [done = std::move(done),
-                     detail = "the vehicle connected from " + peer_text(socket_) + " to " + url()] {
-    done(std::error_code{}, detail);
-  });
+  asio::post(loop_, [done = std::move(done), detail = options_.peer + " connected from " +
+                                                      peer_text(socket_) + " to " +
+                                                      url()] { done(std::error_code{}, detail); });
 }
 
 void TcpInLink::accept() {
@@ -108,7 +108,7 @@ void TcpInLink::accept() {
     if (waiting_) {
       adopt(std::exchange(waiting_, nullptr));
     } else if (state() == TransportState::up) {
-      reconnect_now("the vehicle connected again from " + peer_text(pending_) +
+      reconnect_now(options_.peer + " connected again from " + peer_text(pending_) +
                     ": that connection replaces this one");
     }  // else: down, between connections; open() adopts it after the back-off
     accept();
@@ -135,6 +135,11 @@ void TcpInLink::release() noexcept {
   acceptor_.close(ignored);
   pending_.close(ignored);
   incoming_.close(ignored);
+}
+
+std::optional<std::size_t> TcpInLink::unsent_bytes() const noexcept {
+  if (!socket_.is_open()) return std::nullopt;
+  return detail::unsent_bytes(const_cast<decltype(socket_)&>(socket_).native_handle());
 }
 
 }  // namespace mocaplink::io

@@ -64,7 +64,8 @@ void UdpInLink::open() {
   reset_backoff();
   ++counters_.connects;
   // `connecting` until the vehicle has spoken: nothing can be sent before.
-  const std::string listening = "listening on " + url() + "; waiting for the vehicle to speak";
+  const std::string listening =
+      "listening on " + url() + "; waiting for " + options_.peer + " to speak";
   if (state() == TransportState::connecting) {
     report_state(listening);
   } else {
@@ -108,10 +109,10 @@ void UdpInLink::on_datagram(std::size_t n) {
   peer_ = from;
   has_peer_ = true;
   if (moved) {
-    report_state("the vehicle now speaks from " + endpoint_text(peer_) + " (was " + was +
+    report_state(options_.peer + " now speaks from " + endpoint_text(peer_) + " (was " + was +
                  "): answering there");
   } else {
-    set_state(TransportState::up, "the vehicle spoke from " + endpoint_text(peer_) + " to " +
+    set_state(TransportState::up, options_.peer + " spoke from " + endpoint_text(peer_) + " to " +
                                       url() + ": answering there");
   }
 }

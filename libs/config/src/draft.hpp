@@ -71,6 +71,7 @@ struct VehicleDraft {
   Field<std::string> name;
   Field<std::string> body;
   Field<LinkUrl> link;
+  Field<std::vector<LinkUrl>> gcs;
   Field<std::uint8_t> system_id;
   Field<std::uint8_t> component_id;
   Field<core::Profile> profile;

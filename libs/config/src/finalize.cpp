@@ -194,6 +194,7 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   out.name = *v.name.value;
   out.body = *v.body.value;
   vehicle.link = *v.link.value;
+  vehicle.gcs = value_or(v.gcs, std::vector<LinkUrl>{});
   out.system_id = *v.system_id.value;
   // Keys not given keep the core's defaults (component 197, the vision component of
   // protocols/autopilots.md §9; 50 Hz).
@@ -228,6 +229,39 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
     if (warning) diagnostics.warning(v.link.where, v.link.key, *warning);
   }
   return vehicle;
+}
+
+/// Ground-station endpoints (issue 38): one URL on several vehicles is one shared endpoint; but
+/// an endpoint may not be a vehicle's link, nor own a local port another endpoint or link owns.
+void cross_check_gcs(const ConfigDraft& d, Diagnostics& diagnostics) {
+  for (std::size_t i = 0; i < d.vehicles.size(); ++i) {
+    const auto& v = d.vehicles[i];
+    if (!v.gcs.value) continue;
+    for (const LinkUrl& endpoint : *v.gcs.value) {
+      const std::string name = to_string(endpoint);
+      std::string clash;
+      for (std::size_t j = 0; j < d.vehicles.size() && clash.empty(); ++j) {
+        const auto& other = d.vehicles[j];
+        const std::string other_name = quoted(other.name.value.value_or("?"));
+        if (other.link.value &&
+            (*other.link.value == endpoint || same_local_port(*other.link.value, endpoint))) {
+          clash = "is vehicle " + other_name + "'s link " + to_string(*other.link.value) + " (" +
+                  describe(other.link.where) + ") or needs its local port";
+        }
+        if (j >= i || !other.gcs.value) continue;
+        for (const LinkUrl& earlier : *other.gcs.value) {
+          if (earlier != endpoint && same_local_port(earlier, endpoint)) {
+            clash = "needs the local port of vehicle " + other_name + "'s ground-station " +
+                    "endpoint " + to_string(earlier) + " (" + describe(other.gcs.where) +
+                    "); the same URL would share it";
+          }
+        }
+      }
+      if (!clash.empty()) {
+        diagnostics.error(v.gcs.where, v.gcs.key, "ground-station endpoint " + name + " " + clash);
+      }
+    }
+  }
 }
 
 /// Unique names; unique system ids per link; a warning for links shared between vehicles.
@@ -329,6 +363,7 @@ std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
     }
   }
   cross_check_vehicles(d, diagnostics);
+  cross_check_gcs(d, diagnostics);
   config.tracking = d.tracking;
   check_tracking(d, diagnostics);
   config.http = finalize_http(d, diagnostics);

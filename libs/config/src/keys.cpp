@@ -285,6 +285,25 @@ void vehicle_body(VehicleDraft& d, const Value& v, Diagnostics& diag) {
 void vehicle_link(VehicleDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.link, v, parse_link_url(v.text()), diag);
 }
+/// gcs = ["udpin://:14550", ...]: each a link URL (the same forms), none twice.
+ValueOrError<std::vector<LinkUrl>> parse_gcs(const std::vector<std::string>& urls) {
+  using Result = ValueOrError<std::vector<LinkUrl>>;
+  std::vector<LinkUrl> out;
+  for (std::size_t i = 0; i < urls.size(); ++i) {
+    auto url = parse_link_url(urls[i]);
+    const std::string which = "entry " + std::to_string(i + 1) + " (" + quoted(urls[i]) + "): ";
+    if (!url) return Result::failure(which + url.error());
+    if (std::find(out.begin(), out.end(), url.value()) != out.end()) {
+      return Result::failure(which + "listed twice");
+    }
+    out.push_back(std::move(url).value());
+  }
+  return out;
+}
+
+void vehicle_gcs(VehicleDraft& d, const Value& v, Diagnostics& diag) {
+  assign(d.gcs, v, parse_gcs(v.list()), diag);
+}
 void vehicle_system_id(VehicleDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.system_id, v, byte_in(v.integer(), 1), diag);
 }
@@ -318,10 +337,11 @@ void vehicle_enabled(VehicleDraft& d, const Value& v, Diagnostics& diag) {
   assign(d.enabled, v, ValueOrError<bool>(v.boolean()), diag);
 }
 
-constexpr std::array<KeySpec<VehicleDraft>, 12> kVehicleKeys = {{
+constexpr std::array<KeySpec<VehicleDraft>, 13> kVehicleKeys = {{
     {"name", ValueType::string, vehicle_name},
     {"body", ValueType::string, vehicle_body},
     {"link", ValueType::string, vehicle_link},
+    {"gcs", ValueType::string_list, vehicle_gcs},
     {"system_id", ValueType::integer, vehicle_system_id},
     {"component_id", ValueType::integer, vehicle_component_id},
     {"profile", ValueType::string, vehicle_profile},

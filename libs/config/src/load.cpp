@@ -72,6 +72,7 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin,
     vd.name = at(v.name, "name");
     vd.body = at(v.body, "body");
     vd.link = at(config.vehicles[i].link, "link");
+    if (!config.vehicles[i].gcs.empty()) vd.gcs = at(config.vehicles[i].gcs, "gcs");
     vd.system_id = at(v.system_id, "system_id");
     vd.component_id = at(v.component_id, "component_id");
     vd.profile = at(v.profile, "profile");

@@ -76,6 +76,7 @@ void overwrite(Field& target, const Field& source) {
 void merge(VehicleDraft& target, const VehicleDraft& source) {
   overwrite(target.body, source.body);
   overwrite(target.link, source.link);
+  overwrite(target.gcs, source.gcs);
   overwrite(target.system_id, source.system_id);
   overwrite(target.component_id, source.component_id);
   overwrite(target.profile, source.profile);

@@ -64,13 +64,17 @@ TEST(Overrides, DesignExampleAddsAVehicle) {
 TEST(Overrides, EndpointFormsFromTheCommandLine) {
   // A query's '=' stays in the link's value: only the first '=' of an item splits key and value.
   CommandLineOverrides o;
-  o.vehicles = {"a:body=A,link=udp://192.168.1.30:14540?bind=:14540,system_id=1,profile=px4",
-                "b:body=B,link=udpin://127.0.0.1:14541,system_id=2,profile=px4",
-                "c:body=C,link=tcpin://:5770,system_id=3,profile=auto"};
+  o.vehicles = {
+      "a:body=A,link=udp://192.168.1.30:14540?bind=:14540,system_id=1,profile=px4,"
+      "gcs=udpin://:14550+tcpin://:5771",
+      "b:body=B,link=udpin://127.0.0.1:14541,system_id=2,profile=px4",
+      "c:body=C,link=tcpin://:5770,system_id=3,profile=auto"};
   const auto result = apply_overrides(demo_config(), o);
   ASSERT_TRUE(result.ok()) << testing::PrintToString(error_lines(result));
   ASSERT_EQ(result.config->vehicles.size(), 4u);
   EXPECT_EQ(to_string(result.config->vehicles[1].link), "udp://192.168.1.30:14540?bind=:14540");
+  ASSERT_EQ(result.config->vehicles[1].gcs.size(), 2u);
+  EXPECT_EQ(to_string(result.config->vehicles[1].gcs[1]), "tcpin://:5771");
   EXPECT_EQ(to_string(result.config->vehicles[2].link), "udpin://127.0.0.1:14541");
   EXPECT_EQ(to_string(result.config->vehicles[3].link), "tcpin://:5770");
 }

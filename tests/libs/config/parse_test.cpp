@@ -627,6 +627,59 @@ TEST(ParseConfig, TwoLinksOwningOnePortIsAnError) {
                 "(two.toml:6:8); give each vehicle its own port"}));
 }
 
+TEST(ParseConfig, GroundStationEndpoints) {
+  const auto vehicle = [](const char* name, int id, const char* link, const char* gcs) {
+    return std::string("[[vehicle]]\nname = \"") + name + "\"\nbody = \"B\"\nlink = \"" + link +
+           "\"\nsystem_id = " + std::to_string(id) + "\nprofile = \"ardupilot\"\ngcs = " + gcs +
+           "\n";
+  };
+  // Several per vehicle; one URL on two vehicles is one shared endpoint.
+  const auto shared =
+      parse_config(kMocap +
+                       vehicle("a", 1, "serial:///dev/ttyUSB0?baud=921600",
+                               "[\"udpin://:14550\", \"tcpin://127.0.0.1:5770\"]") +
+                       vehicle("b", 2, "udp://10.0.0.2:14550", "[\"udpin://0.0.0.0:14550\"]"),
+                   "g.toml");
+  EXPECT_THAT(error_lines(shared), testing::ElementsAre(testing::HasSubstr(
+                                       "vehicle[2].gcs: ground-station endpoint "
+                                       "udpin://0.0.0.0:14550 needs the local port of vehicle "
+                                       "\"a\"'s ground-station endpoint udpin://:14550")));
+  const auto same =
+      parse_config(kMocap + vehicle("a", 1, "udp://10.0.0.1:14550", "[\"udpin://:14550\"]") +
+                       vehicle("b", 2, "udp://10.0.0.2:14550", "[\"udpin://:14550\"]"),
+                   "g.toml");
+  ASSERT_TRUE(same.ok()) << testing::PrintToString(error_lines(same));
+  ASSERT_EQ(same.config->vehicles[0].gcs.size(), 1u);
+  EXPECT_EQ(same.config->vehicles[0].gcs[0], same.config->vehicles[1].gcs[0]);
+  EXPECT_EQ(to_string(same.config->vehicles[0].gcs[0]), "udpin://:14550");
+  // Errors name the entry.
+  EXPECT_EQ(
+      error_lines(parse_config(
+          kMocap + vehicle("a", 1, "udp://10.0.0.1:14550", "[\"udpin://:14550\", \"udpn://:1\"]"),
+          "e.toml")),
+      (std::vector<std::string>{
+          "e.toml:9:7: vehicle[1].gcs: entry 2 (\"udpn://:1\"): unknown link scheme "
+          "\"udpn\"; did you mean \"udp\"? (expected " +
+          std::string("udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, "
+                      "tcpin://[ADDR]:PORT or serial:///dev/DEVICE?baud=N)")}));
+  EXPECT_THAT(
+      error_lines(parse_config(kMocap + vehicle("a", 1, "udp://10.0.0.1:14550",
+                                                "[\"udpin://:14550\", \"udpin://:14550\"]"),
+                               "e.toml")),
+      testing::ElementsAre(testing::HasSubstr("entry 2 (\"udpin://:14550\"): listed twice")));
+  // Never a vehicle's link, nor its local port.
+  EXPECT_THAT(
+      error_lines(parse_config(
+          kMocap + vehicle("a", 1, "udpin://:14550", "[\"udpin://127.0.0.1:14550\"]"), "e.toml")),
+      testing::ElementsAre(testing::HasSubstr(
+          "ground-station endpoint udpin://127.0.0.1:14550 is vehicle \"a\"'s link "
+          "udpin://:14550 (e.toml:6:8) or needs its local port")));
+  EXPECT_THAT(
+      error_lines(parse_config(kMocap + vehicle("a", 1, "udp://10.0.0.1:14550", "[3]"), "e.toml")),
+      testing::ElementsAre(
+          testing::HasSubstr("vehicle[1].gcs[1]: expected a string, got an integer")));
+}
+
 TEST(ParseConfig, NoVehiclesIsAWarning) {
   const auto result = parse_config(kMocap, "n.toml");
   ASSERT_TRUE(result.ok());

@@ -72,7 +72,13 @@ struct LinkCounters {
   std::uint64_t bytes_received = 0;
   std::uint64_t receive_errors = 0;  ///< OS errors on receive other than ECONNREFUSED
   std::uint64_t connects = 0;        ///< successful opens/connections (reconnects = this − 1)
-  mavlink::ParserCounters parser;    ///< incoming frames accepted and dropped, by reason
+  /// Frames forwarded from ground stations (send_forwarded; issue 38): handed to the OS or
+  /// written, and dropped — the link could not carry them beside its own frames (the forwarded
+  /// queue was full) or was not up. frames_sent and bytes_sent include the forwarded ones.
+  std::uint64_t forwarded_sent = 0;
+  std::uint64_t forwarded_bytes = 0;
+  std::uint64_t forwarded_dropped = 0;
+  mavlink::ParserCounters parser;  ///< incoming frames accepted and dropped, by reason
 };
 
 /// Options common to every link kind.
@@ -91,6 +97,9 @@ struct LinkOptions {
   /// address that frames of this system come from, so that another program on its port (a ground
   /// station's heartbeat) cannot take the vehicle's poses. Unset: any accepted frame counts.
   std::optional<std::uint8_t> vehicle_system_id;
+  /// Who is at the other end, for the listening links' state messages ("the vehicle spoke from
+  /// ..."): "the vehicle", or "a ground station" for a `gcs` endpoint.
+  std::string peer = "the vehicle";
 };
 
 class Link {
@@ -113,6 +122,20 @@ class Link {
   /// sent. UDP hands them to the OS in one system call (sendmmsg) where it can; the default
   /// calls send() for each.
   virtual std::size_t send_batch(std::span<const std::span<const std::uint8_t>> frames);
+  /// Sends one frame forwarded from a ground station (issue 38), never ahead of the link's own
+  /// frames and never delaying them: a datagram link sends it at once (a datagram waits behind no
+  /// other); a stream link queues it and writes it only where it cannot delay a pose
+  /// (poses_first.hpp). Returns false when it was dropped (counted in forwarded_dropped).
+  virtual bool send_forwarded(std::span<const std::uint8_t> frame);
+  /// The period of the poses this link carries (1 / rate_hz; zero: unknown), for the poses-first
+  /// rule of the links that have one.
+  virtual void set_pose_period(std::chrono::nanoseconds /*period*/) {}
+  /// Bytes of forwarded frames waiting for their turn (stream links).
+  [[nodiscard]] virtual std::size_t forwarded_queued_bytes() const noexcept { return 0; }
+  /// The link's capacity in bytes per second when it is known (a serial port's baud / 10).
+  [[nodiscard]] virtual std::optional<double> capacity_bytes_per_second() const noexcept {
+    return std::nullopt;
+  }
   /// Stops receiving and reconnecting. Stream links try to write what is queued for at most
   /// `linger` before the socket closes; UDP sends synchronously, so nothing is pending.
   virtual void close(std::chrono::milliseconds linger = std::chrono::milliseconds{0}) = 0;

@@ -30,6 +30,7 @@ class SerialLink final : public StreamLink {
   void async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) override;
   void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) override;
   void close_transport() noexcept override;
+  [[nodiscard]] std::optional<std::size_t> unsent_bytes() const noexcept override;
 
   std::string device_;
   std::uint32_t baud_;

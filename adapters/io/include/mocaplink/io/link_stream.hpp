@@ -22,6 +22,7 @@
 
 #include "mocaplink/io/link.hpp"
 #include "mocaplink/io/link_backlog.hpp"
+#include "mocaplink/io/poses_first.hpp"
 
 namespace mocaplink::io {
 
@@ -31,6 +32,14 @@ class StreamLink : public Link {
 
   void start(FrameHandler on_frame, StateHandler on_state) final;
   bool send(std::span<const std::uint8_t> frame) final;
+  bool send_forwarded(std::span<const std::uint8_t> frame) final;
+  void set_pose_period(std::chrono::nanoseconds period) final { gate_.set_pose_period(period); }
+  [[nodiscard]] std::size_t forwarded_queued_bytes() const noexcept final {
+    return gate_.queued_bytes();
+  }
+  [[nodiscard]] std::optional<double> capacity_bytes_per_second() const noexcept final {
+    return bytes_per_second_ > 0.0 ? std::optional<double>(bytes_per_second_) : std::nullopt;
+  }
   void close(std::chrono::milliseconds linger) final;
   [[nodiscard]] std::size_t backlog_bytes() const noexcept final { return backlog_.bytes(); }
 
@@ -38,7 +47,9 @@ class StreamLink : public Link {
   using IoHandler = std::function<void(const std::error_code& error, std::size_t bytes)>;
   using OpenHandler = std::function<void(const std::error_code& error, const std::string& detail)>;
 
-  StreamLink(asio::io_context& loop, LinkOptions options);
+  /// `bytes_per_second`: the transport's speed when known (serial: baud / 10), for the
+  /// poses-first rule; 0 for unknown (TCP).
+  StreamLink(asio::io_context& loop, LinkOptions options, double bytes_per_second = 0.0);
 
   /// Begin opening/connecting; call `done` exactly once (on the loop thread). `detail` names the
   /// endpoint (for the state message).
@@ -51,6 +62,13 @@ class StreamLink : public Link {
   virtual void close_transport() noexcept = 0;
   /// The link closed for good (close()): release what outlives one connection (a listener).
   virtual void release() noexcept {}
+  /// Bytes written but still held by the OS (a socket's send buffer, a tty's output queue), where
+  /// the platform tells (Linux: SIOCOUTQ / TIOCOUTQ); nullopt elsewhere.
+  [[nodiscard]] virtual std::optional<std::size_t> unsent_bytes() const noexcept {
+    return std::nullopt;
+  }
+  /// How often a waiting forwarded frame looks again while the OS still holds too much.
+  static constexpr std::chrono::milliseconds kUnsentPoll{2};
   /// Drops the current connection (as a read error would) and opens again at once, without the
   /// back-off: a listening link whose vehicle connected anew.
   void reconnect_now(const std::string& why);
@@ -62,11 +80,16 @@ class StreamLink : public Link {
   void on_opened(std::uint64_t generation, const std::error_code& error, const std::string& detail);
   void read();
   void kick_write();
+  /// Writes the next forwarded frame when the own queue is empty and the rule allows it.
+  void pump_forwarded();
   void lose_connection(const std::string& why, bool at_once = false);
   void finish_close();
 
   LinkBacklog backlog_;
+  double bytes_per_second_;
+  PosesFirst gate_;  // forwarded frames waiting for their turn
   asio::steady_timer retry_timer_;
+  asio::steady_timer forward_timer_;
   asio::steady_timer linger_timer_;
   std::uint64_t generation_ = 0;  // bumped per connection; handlers of older ones are ignored
   bool closing_ = false;

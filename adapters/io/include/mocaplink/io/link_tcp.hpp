@@ -28,6 +28,7 @@ class TcpLink final : public StreamLink {
   void async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) override;
   void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) override;
   void close_transport() noexcept override;
+  [[nodiscard]] std::optional<std::size_t> unsent_bytes() const noexcept override;
 
   std::string host_;
   std::uint16_t port_;

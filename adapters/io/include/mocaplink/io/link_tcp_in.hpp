@@ -35,6 +35,7 @@ class TcpInLink final : public StreamLink {
   void async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) override;
   void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) override;
   void close_transport() noexcept override;
+  [[nodiscard]] std::optional<std::size_t> unsent_bytes() const noexcept override;
   void release() noexcept override;
   bool listen(std::error_code& error);
   void accept();

@@ -45,6 +45,9 @@ struct MocapSettings {
 struct Vehicle {
   core::VehicleSpec spec;
   LinkUrl link;
+  /// Ground-station endpoints sharing the vehicle's link (docs/config.md "Ground stations"):
+  /// frames pass both ways unchanged, poses first. No duplicates; none equal to a vehicle link.
+  std::vector<LinkUrl> gcs;
 };
 
 /// [http]: the dashboard / REST API.
