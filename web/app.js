@@ -307,7 +307,28 @@ function renderVehicle(card, v, fromPatch = false) {
   if (fromPatch || !card.messages.contains(document.activeElement)) {
     for (const input of card.messages.querySelectorAll('input')) input.checked = v.messages.includes(input.value);
   }
+  renderGroundStations(card, v);
   renderSetup(card, v);
+}
+
+// Ground stations sharing the vehicle's link (docs/api.md "link_share", "gcs"): one line per
+// endpoint, and what the link carries for whom (poses first).
+function renderGroundStations(card, v) {
+  const r = card.root;
+  const endpoints = v.gcs || [];
+  $('.v-gcs-box', r).hidden = endpoints.length === 0;
+  $('.v-share-box', r).hidden = endpoints.length === 0;
+  if (endpoints.length === 0) return;
+  $('.v-gcs', r).textContent = endpoints.map((e) => {
+    const drops = e.dropped + e.no_route + e.bad_frames;
+    return `${e.url} · ${e.state} · ${e.peers} connected · ↓${int(e.frames_to_gcs)} ↑${int(e.frames_from_gcs)}` +
+      (drops ? ` · ${int(drops)} dropped` : '');
+  }).join('\n');
+  const s = v.link_share;
+  const budget = s.capacity_bps === null ? 'budget unknown' : `${int(Math.round(s.capacity_bps))} B/s budget`;
+  $('.v-share', r).textContent = `${budget} · mocaplink ${int(Math.round(s.own_bps))} B/s · ground stations ` +
+    `${int(Math.round(s.forwarded_bps))} B/s` + (s.forwarded_dropped ? ` · ${int(s.forwarded_dropped)} of theirs dropped` : '') +
+    (s.queued_bytes ? ` · ${int(s.queued_bytes)} B waiting` : '');
 }
 
 function renderVehicles(vehicles) {

@@ -30,6 +30,7 @@
 #include "mocaplink/sources/registry.hpp"
 #include "run_config.hpp"
 #include "run_dashboard.hpp"
+#include "run_gcs.hpp"
 #include "run_links.hpp"
 #include "run_recorder.hpp"
 #include "run_summary.hpp"
@@ -88,7 +89,11 @@ class Daemon {
         summary_timer_(loop_),
         stop_timer_(loop_),
         config_(settings.config),
-        summary_(config_, settings.summary_period) {}
+        summary_(config_, settings.summary_period),
+        ground_stations_(loop_, [this](std::size_t slot, std::span<const std::uint8_t> frame) {
+          // A ground station's frame: the vehicle's link takes it behind its own (poses first).
+          if (io::Link* link = link_of(slot)) (void)link->send_forwarded(frame);
+        }) {}
 
   int run();
 
@@ -102,6 +107,12 @@ class Daemon {
   void restore_signing(std::size_t slot, const config::Vehicle& vehicle);
   void open_links();
   void start_link(std::size_t slot);
+  /// Tells the vehicle's link its pose period (the poses-first rule, io/poses_first.hpp).
+  void set_pose_period(std::size_t slot, double rate_hz) {
+    if (io::Link* link = link_of(slot); link != nullptr && rate_hz > 0.0) {
+      link->set_pose_period(std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / rate_hz)));
+    }
+  }
   std::optional<web::ApiError> add_vehicle(const std::vector<config::VehicleKey>& keys,
                                            bool paused);
   std::optional<web::ApiError> remove_vehicle(const std::string& name);
@@ -163,6 +174,7 @@ class Daemon {
   std::uint64_t next_rejection_log_ = 1;  // the source's rejected count logged next (1, 10, ...)
   core::BridgeOutput frame_output_;       // per frame, kept for its capacity
   Summary summary_;
+  GroundStations ground_stations_;           // the vehicles' `gcs` endpoints (run_gcs.hpp)
   std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
 };
@@ -208,11 +220,13 @@ void Daemon::open_links() {
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
     vehicles_.push_back(make_vehicle_link(loop_, vehicles[i]));
     start_link(i);
+    ground_stations_.add_vehicle(i, vehicles[i]);
   }
 }
 
 void Daemon::start_link(std::size_t slot) {
   io::Link* link = vehicles_[slot].link.get();
+  set_pose_period(slot, bridge_.vehicle(slot)->rate_hz);
   link->start(
       [this, slot, link](const mavlink::FrameView& frame, core::HostTime t) {
         // The slot may hold another vehicle's link by now (removed, then added again).
@@ -259,6 +273,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   if (slot >= vehicles_.size()) vehicles_.resize(slot + 1);
   vehicles_[slot] = make_vehicle_link(loop_, vehicle);
   start_link(slot);
+  ground_stations_.add_vehicle(slot, vehicle);
   restore_signing(slot, vehicle);
   if (recorder_) {
     std::string problem;
@@ -288,6 +303,7 @@ std::optional<web::ApiError> Daemon::remove_vehicle(const std::string& name) {
   }
   v.link->close(kLinger);
   retired_.push_back(Retired{std::move(v.link), io::host_now()});
+  ground_stations_.remove_vehicle(*slot);
   if (recorder_) recorder_->remove_vehicle(*slot);
   vehicles_[*slot] = VehicleLink{};
   while (!vehicles_.empty() && !vehicles_.back().link) vehicles_.pop_back();
@@ -332,6 +348,7 @@ std::optional<web::ApiError> Daemon::update_vehicle(const web::UpdateVehicle& up
   if (rate && !bridge_.set_rate_hz(*slot, *rate)) {
     return web::ApiError{500, "internal error: the sender refused rate_hz", "rate_hz"};
   }
+  if (rate) set_pose_period(*slot, *rate);
   if (next) config_ = std::move(*next);
   if (update.paused) (void)bridge_.set_paused(*slot, *update.paused);
   spdlog::info("dashboard: vehicle {}:{}{}{}", update.name,
@@ -572,6 +589,9 @@ void Daemon::on_vehicle_frame(std::size_t vehicle, const mavlink::FrameView& fra
     // The link verified it: our clock must stay above what the vehicle has seen (§7.3).
     (void)bridge_.raise_signing_timestamp(vehicle, v.link->verified_timestamp_10us());
   }
+  // Ground stations hear the vehicle as over the direct link: every frame, unchanged, where its
+  // target was heard (run_gcs.hpp). An unknown id passes too: mavlink-router forwards it.
+  ground_stations_.from_vehicle(vehicle, frame);
   const auto message = mavlink::decode_message(frame);
   if (!message) return;  // unknown id: counted by the parser, nothing for the core
   dispatch(bridge_.on_vehicle_message(
@@ -619,6 +639,7 @@ void Daemon::stop(const std::string& reason) {
   for (auto& v : vehicles_) {
     if (v.link) v.link->close(kLinger);
   }
+  ground_stations_.close(kLinger);
   stop_timer_.expires_after(kLinger + 50ms);
   stop_timer_.async_wait([this](const std::error_code&) { loop_.stop(); });
 }
@@ -635,8 +656,8 @@ int Daemon::run() {
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
       loop_,
-      DashboardAccess{bridge_, config_, vehicles_, source_error_, source_->counters(),
-                      bridge_latency_, late_frames_,
+      DashboardAccess{bridge_, config_, vehicles_, ground_stations_, source_error_,
+                      source_->counters(), bridge_latency_, late_frames_,
                       [this](const std::vector<config::VehicleKey>& keys, bool paused) {
                         return add_vehicle(keys, paused);
                       },
@@ -659,6 +680,10 @@ int Daemon::run() {
   every(tick_timer_, kTickPeriod, [this] {
     const core::HostTime now = io::host_now();
     dispatch(bridge_.on_tick(now));
+    ground_stations_.on_tick(now);
+    for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {
+      if (vehicles_[slot].link) ground_stations_.sample(slot, *vehicles_[slot].link, now);
+    }
     destroy_retired(now);
     warn_late_frames(now);
     log_rejections();

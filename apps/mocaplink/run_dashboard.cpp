@@ -79,10 +79,15 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     context_.superseded_frames = access_.late_frames.superseded();
     context_.links.clear();
     context_.links_down.clear();
+    context_.gcs.clear();
+    context_.link_share.clear();
     for (const auto& v : snapshot.vehicles) {
       const io::Link* link =
           v.index < access_.vehicles.size() ? access_.vehicles[v.index].link.get() : nullptr;
       context_.links.push_back(link != nullptr ? link->url() : "");
+      context_.gcs.push_back(access_.ground_stations.views(v.index));
+      context_.link_share.push_back(link != nullptr ? access_.ground_stations.share(v.index, *link)
+                                                    : web::LinkShareView{});
       const auto state = link != nullptr ? link->state() : io::TransportState::closed;
       context_.links_down.push_back(state == io::TransportState::down ||
                                     state == io::TransportState::closed);

@@ -17,6 +17,7 @@
 #include "mocaplink/core/latency_window.hpp"
 #include "mocaplink/sources/source.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
+#include "run_gcs.hpp"
 #include "run_links.hpp"
 
 namespace mocaplink::web {
@@ -30,6 +31,7 @@ struct DashboardAccess {
   core::Bridge& bridge;
   const config::Config& config;              ///< [http] and the source URL
   const std::vector<VehicleLink>& vehicles;  ///< by vehicle slot, as in the Bridge
+  const GroundStations& ground_stations;     ///< the vehicles' `gcs` endpoints
   const std::string& source_error;           ///< the source's last problem, "" when connected
   /// The source's counters: packets it dropped unread (rejected()) and why (any thread).
   const sources::SourceCounters& source_counters;

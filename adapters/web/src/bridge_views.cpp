@@ -285,6 +285,8 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     // the first request of a run reads the rate that flows.
     v.send_rate_hz = sender.send_rate_hz;
 
+    if (i < context.gcs.size()) v.gcs = context.gcs[i];
+    if (i < context.link_share.size()) v.link_share = context.link_share[i];
     const bool down = i < context.links_down.size() && context.links_down[i];
     v.link_state = link_state(state.link, down);
     if (state.last_message)

@@ -114,6 +114,26 @@ void to_json(nlohmann::json& j, const EstimatorView& estimator) {
                      {"age_s", estimator.age_s}};
 }
 
+void to_json(nlohmann::json& j, const GcsEndpointView& e) {
+  j = nlohmann::json{{"url", e.url},
+                     {"state", e.state},
+                     {"peers", e.peers},
+                     {"frames_to_gcs", e.frames_to_gcs},
+                     {"frames_from_gcs", e.frames_from_gcs},
+                     {"dropped", e.dropped},
+                     {"no_route", e.no_route},
+                     {"bad_frames", e.bad_frames}};
+}
+
+void to_json(nlohmann::json& j, const LinkShareView& s) {
+  j = nlohmann::json{{"capacity_bps", optional_json(s.capacity_bps)},
+                     {"own_bps", s.own_bps},
+                     {"forwarded_bps", s.forwarded_bps},
+                     {"forwarded", s.forwarded},
+                     {"forwarded_dropped", s.forwarded_dropped},
+                     {"queued_bytes", s.queued_bytes}};
+}
+
 void to_json(nlohmann::json& j, const VehicleView& vehicle) {
   j = nlohmann::json{{"name", vehicle.name},
                      {"body", vehicle.body},
@@ -159,7 +179,9 @@ void to_json(nlohmann::json& j, const VehicleView& vehicle) {
                        {"recommended", optional_json(vehicle.delay_ms.recommended)},
                        {"parameter", vehicle.delay_ms.parameter},
                        {"current", optional_json(vehicle.delay_ms.current)},
-                       {"basis", vehicle.delay_ms.basis}}}};
+                       {"basis", vehicle.delay_ms.basis}}},
+                     {"gcs", vehicle.gcs},
+                     {"link_share", vehicle.link_share}};
 }
 
 void to_json(nlohmann::json& j, const Alert& alert) {

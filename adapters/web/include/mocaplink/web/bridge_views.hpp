@@ -20,6 +20,8 @@ struct BridgeStatusContext {
   std::string source_error;        ///< last source connection problem, "" if none
   std::vector<std::string> links;  ///< link URL per vehicle (index as in the Bridge)
   std::vector<bool> links_down;    ///< per vehicle: the link cannot send (may be shorter)
+  std::vector<std::vector<GcsEndpointView>> gcs{};  ///< per vehicle (may be shorter)
+  std::vector<LinkShareView> link_share{};          ///< per vehicle (may be shorter)
   /// The bridge's own latency over the latest frames (the daemon measures it), if any.
   std::optional<core::LatencySummary> bridge_latency{};
   /// Frames the daemon skipped because they reached its loop too late (core::LateFrames).

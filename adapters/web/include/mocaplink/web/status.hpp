@@ -179,6 +179,29 @@ struct DelayView {
 };
 
 /// One vehicle: its Sender (what we send) and its VehicleState (what it tells us).
+/// A ground-station endpoint serving the vehicle (issue 38; docs/api.md "Ground stations").
+struct GcsEndpointView {
+  std::string url{};      ///< the endpoint, canonical ("udpin://:14550")
+  std::string state{};    ///< its socket: connecting | up | down | closed (io::TransportState)
+  std::size_t peers = 0;  ///< ground stations (system/component ids) heard within 5 s
+  std::uint64_t frames_to_gcs = 0;    ///< vehicle frames sent to it, cumulative
+  std::uint64_t frames_from_gcs = 0;  ///< frames its ground stations sent, cumulative
+  std::uint64_t dropped = 0;     ///< frames toward it dropped (its socket down or backlog full)
+  std::uint64_t no_route = 0;    ///< its frames addressed to no vehicle behind it, dropped
+  std::uint64_t bad_frames = 0;  ///< bad CRC / flags / cut-off frames from it, dropped
+};
+
+/// The vehicle's link as shared by mocaplink's own traffic and its ground stations' (poses
+/// first). Rates are bytes per second toward the vehicle over the last second or so.
+struct LinkShareView {
+  std::optional<double> capacity_bps{};  ///< what the link carries (serial: baud / 10); else null
+  double own_bps = 0.0;                  ///< mocaplink's own frames (poses, heartbeat, ...)
+  double forwarded_bps = 0.0;            ///< ground stations' frames
+  std::uint64_t forwarded = 0;           ///< ground-station frames written, cumulative
+  std::uint64_t forwarded_dropped = 0;   ///< ground-station frames dropped, cumulative
+  std::size_t queued_bytes = 0;          ///< ground-station bytes waiting for their turn
+};
+
 struct VehicleView {
   std::string name{};
   std::string body{};          ///< mocap rigid body it follows
@@ -213,6 +236,8 @@ struct VehicleView {
   std::vector<StatusTextView> statustext{};  ///< the vehicle's last few, oldest first
   std::optional<EstimatorView> estimator{};
   DelayView delay_ms{};
+  std::vector<GcsEndpointView> gcs{};  ///< its ground-station endpoints (empty: none configured)
+  LinkShareView link_share{};
 };
 
 enum class AlertLevel { warning, error };

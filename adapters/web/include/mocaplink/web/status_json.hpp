@@ -12,6 +12,8 @@ void to_json(nlohmann::json& j, const BodyView& body);
 void to_json(nlohmann::json& j, const BridgeLatencyView& latency);
 void to_json(nlohmann::json& j, const StationView& station);
 void to_json(nlohmann::json& j, const HeartbeatView& heartbeat);
+void to_json(nlohmann::json& j, const GcsEndpointView& endpoint);
+void to_json(nlohmann::json& j, const LinkShareView& share);
 void to_json(nlohmann::json& j, const VehicleView& vehicle);
 void to_json(nlohmann::json& j, const Alert& alert);
 void to_json(nlohmann::json& j, const StatusView& status);
