@@ -138,6 +138,13 @@ void tracking_gate_sigma(ConfigDraft& d, const Value& v, Diagnostics& diag) {
 void tracking_gate_min(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   set_optional(d, d.tracking.gate_min_m, v, number_in(v.number(), 0.0, 100.0), diag);
 }
+void tracking_jump_m(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d, d.tracking.reset_jump_m, v, number_in(v.number(), 0.0, 100.0, false), diag);
+}
+void tracking_jump_rad(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  set_optional(d, d.tracking.reset_jump_rad, v, number_in(v.number(), 0.0, std::numbers::pi, false),
+               diag);
+}
 void tracking_jump_frames(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   note_tracking_site(d, v);
   if (v.integer() >= 1 && v.integer() <= 1000) {
@@ -148,7 +155,7 @@ void tracking_jump_frames(ConfigDraft& d, const Value& v, Diagnostics& diag) {
   }
 }
 
-constexpr std::array<KeySpec<ConfigDraft>, 9> kTrackingKeys = {{
+constexpr std::array<KeySpec<ConfigDraft>, 11> kTrackingKeys = {{
     {"loss_timeout_ms", ValueType::number, tracking_loss},
     {"reset_after_ms", ValueType::number, tracking_reset},
     {"position_noise_m", ValueType::number, tracking_position_noise},
@@ -158,6 +165,8 @@ constexpr std::array<KeySpec<ConfigDraft>, 9> kTrackingKeys = {{
     {"gate_sigma", ValueType::number, tracking_gate_sigma},
     {"gate_min_m", ValueType::number, tracking_gate_min},
     {"jump_confirm_frames", ValueType::integer, tracking_jump_frames},
+    {"reset_jump_m", ValueType::number, tracking_jump_m},
+    {"reset_jump_rad", ValueType::number, tracking_jump_rad},
 }};
 
 // ---- [http] ----

@@ -28,6 +28,8 @@ std::string_view to_string(SampleOutcome outcome) {
       return "invalid_input";
     case SampleOutcome::untracked:
       return "untracked";
+    case SampleOutcome::resumed:
+      return "resumed";
   }
   return "unknown";
 }
@@ -52,6 +54,7 @@ bool BodyEstimate::pose_valid() const {
     case SampleOutcome::accepted:
     case SampleOutcome::initialised:
     case SampleOutcome::reset:
+    case SampleOutcome::resumed:
     case SampleOutcome::rejected_outlier:
       return true;
     case SampleOutcome::invalid_input:

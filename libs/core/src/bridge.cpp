@@ -129,7 +129,7 @@ void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
   if (it == bodies_.end()) {
     bodies_.push_back(Body{spec.body, spec.body_axes,
                            Tracker(config_.tracking, AxisMapping(config_.world, spec.body_axes)),
-                           TrackingState::unseen, 0, 0, BodyEstimate{}});
+                           TrackingState::unseen, 0, BodyEstimate{}});
     it = std::prev(bodies_.end());
   }
   SenderConfig sc;
@@ -240,11 +240,7 @@ void Bridge::track_body(Body& body) {
   assert(!all_tracked_ && "a body left untracked after track_bodies()");
   body.tracked_frame = frame_number_;
   const MocapFrame& frame = *frame_;
-  if (frame_restarted_) {
-    body.reset_base =
-        static_cast<std::uint8_t>(body.reset_base + body.tracker.estimate().reset_counter + 1);
-    body.tracker = Tracker(config_.tracking, AxisMapping(config_.world, body.axes));
-  }
+  if (frame_restarted_) body.tracker.on_clock_restart(frame.capture_time, restart_gap_);
   auto sample = frame.bodies.end();
   if (body.frame_index_hint < frame.bodies.size() &&
       frame.bodies[body.frame_index_hint].name == body.name) {
@@ -262,8 +258,6 @@ void Bridge::track_body(Body& body) {
     (void)body.tracker.on_missing(frame.capture_time);
   }
   body.published = body.tracker.estimate();
-  body.published.reset_counter =
-      static_cast<std::uint8_t>(body.published.reset_counter + body.reset_base);
 }
 
 void Bridge::body_events(BridgeOutput& out) {
@@ -272,9 +266,8 @@ void Bridge::body_events(BridgeOutput& out) {
     const BodyEstimate& e = body.published;
     if (e.reset_counter != body.last_reset_counter) {
       body.last_reset_counter = e.reset_counter;
-      out.events.push_back(
-          {BridgeEventKind::body_reset, capture, std::nullopt, body.name,
-           "filter re-initialised, reset_counter " + std::to_string(e.reset_counter)});
+      out.events.push_back({BridgeEventKind::body_reset, capture, std::nullopt, body.name,
+                            "pose jumped, reset_counter " + std::to_string(e.reset_counter)});
     }
     if (e.state != body.last_state) {
       const bool lost = e.state == TrackingState::lost;
@@ -326,7 +319,11 @@ void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutpu
   // frame periods late): the source's clock started again. Smaller steps are left to the
   // Trackers, which refuse non-increasing times.
   frame_restarted_ = last_capture_ && frame.capture_time + max_capture_step_back() < *last_capture_;
-  if (frame_restarted_) ++source_restarts_;
+  if (frame_restarted_) {
+    ++source_restarts_;
+    restart_gap_ = std::max(Duration::zero(), received - last_received_.value_or(received));
+  }
+  last_received_ = received;
   if (!last_capture_ || frame_restarted_ || frame.capture_time > *last_capture_) {
     last_capture_ = frame.capture_time;
   }

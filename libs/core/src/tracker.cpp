@@ -1,5 +1,7 @@
 #include "mocaplink/core/tracker.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +22,13 @@ double ms_to_s(double ms) {
   return ms * 1e-3;
 }
 
+// A return after a gap may lie this many sigma of the last fused velocity estimate, times the gap,
+// beyond reset_jump_m from the prediction (3 sigma: where the body could have got to unseen) ...
+constexpr double kReachVelocitySigmas = 3.0;
+// ... but never more than this many reset_jump_m in all: after a long outage a body re-defined or
+// moved by a metre must still be announced.
+constexpr double kReachMaxJumps = 2.0;
+
 std::optional<TrackerConfigError> positive(const char* field, double value) {
   if (std::isfinite(value) && value > 0.0) return std::nullopt;
   return TrackerConfigError{field, "must be a finite number > 0"};
@@ -35,7 +44,8 @@ std::optional<TrackerConfigError> validate(const TrackerConfig& c) {
         std::pair{"attitude_noise_rad", c.attitude_noise_rad},
         std::pair{"accel_noise_mps2", c.accel_noise_mps2},
         std::pair{"angular_accel_noise_radps2", c.angular_accel_noise_radps2},
-        std::pair{"gate_sigma", c.gate_sigma}}) {
+        std::pair{"gate_sigma", c.gate_sigma}, std::pair{"reset_jump_m", c.reset_jump_m},
+        std::pair{"reset_jump_rad", c.reset_jump_rad}}) {
     if (auto e = positive(field, value)) return e;
   }
   if (c.reset_after_ms < c.loss_timeout_ms) {
@@ -78,12 +88,12 @@ bool Tracker::accept_time(SourceTime capture_time) {
   if (last_input_time_ &&
       to_seconds(*last_input_time_ - capture_time) > ms_to_s(config_.reset_after_ms)) {
     // Far backwards: the source's clock restarted (mocap server restarted, recording looped),
-    // not a late frame. Forget the old time line: lost now, restarted at the next valid sample.
-    clock_restarted_ = true;
-    if (estimate_.state == TrackingState::tracking) estimate_.state = TrackingState::lost;
-    last_valid_time_ = capture_time;
-    last_input_time_ = capture_time;
-    return true;
+    // not a late frame. Nobody said how long the outage was (the Bridge does, through
+    // on_clock_restart, before this can happen): take it as just over reset_after_ms.
+    on_clock_restart(capture_time,
+                     std::chrono::duration_cast<Duration>(
+                         std::chrono::duration<double, std::milli>(config_.reset_after_ms)) +
+                         Duration{1});
   }
   if (last_input_time_ && capture_time <= *last_input_time_) {
     ++estimate_.counters.invalid_input[static_cast<std::size_t>(InvalidInput::time_not_increasing)];
@@ -92,6 +102,25 @@ bool Tracker::accept_time(SourceTime capture_time) {
   }
   last_input_time_ = capture_time;
   return true;
+}
+
+void Tracker::on_clock_restart(SourceTime first_new_time, Duration gap) {
+  if (!last_input_time_) return;
+  // Move the old time line so that the last call lies `gap` (at least 1 ns) before the first
+  // call on the new clock: every interval the filter keeps stays as it was.
+  const Duration offset = first_new_time - std::max(gap, Duration{1}) - *last_input_time_;
+  shift_time(offset);
+  if (estimate_.state == TrackingState::tracking) estimate_.state = TrackingState::lost;
+  jump_count_ = 0;
+}
+
+void Tracker::shift_time(Duration offset) {
+  *last_input_time_ += offset;
+  filter_time_ += offset;
+  last_valid_time_ += offset;
+  jump_time_ += offset;
+  estimate_.capture_time += offset;
+  estimate_.measurement_time += offset;
 }
 
 void Tracker::update_liveness(SourceTime capture_time) {
@@ -142,12 +171,10 @@ SampleOutcome Tracker::on_pose_ned(SourceTime capture_time, const Eigen::Vector3
 
   SampleOutcome outcome = SampleOutcome::accepted;
   if (!initialised_) {
-    start(capture_time, p_ned_m, q_ned_frd, false);
+    start(capture_time, p_ned_m, q_ned_frd, false, false);
     outcome = SampleOutcome::initialised;
-  } else if (clock_restarted_ ||
-             to_seconds(capture_time - last_valid_time_) > ms_to_s(config_.reset_after_ms)) {
-    start(capture_time, p_ned_m, q_ned_frd, false);
-    outcome = SampleOutcome::reset;
+  } else if (to_seconds(capture_time - last_valid_time_) > ms_to_s(config_.reset_after_ms)) {
+    outcome = judge_return(capture_time, p_ned_m, q_ned_frd);
   } else {
     update_liveness(capture_time);
     outcome = fuse(capture_time, p_ned_m, q_ned_frd);
@@ -166,20 +193,22 @@ SampleOutcome Tracker::fuse(SourceTime capture_time, const Eigen::Vector3d& p_ne
   // improbable and large.
   const bool pos_out = pos.mahalanobis > config_.gate_sigma && pos.nu.norm() > config_.gate_min_m;
   const bool att_out = att.mahalanobis > config_.gate_sigma && att.nu.norm() > kAttitudeGateMinRad;
+  // Back from a loss: the filter's gate has widened with the gap (6 sigma of a manoeuvring body:
+  // a metre within a second), wider than where the autopilot would take the pose as ordinary;
+  // beyond the reach it is a jump even inside the gate.
+  if (was_lost && (pos_out || att_out || beyond_reach(capture_time, p_ned_m, q_ned_frd))) {
+    return judge_return(capture_time, p_ned_m, q_ned_frd);
+  }
   if (!pos_out && !att_out) {
     position_.update(p_ned_m, r_position_m2_);
     attitude_.update(att, r_attitude_rad2_);
     last_valid_time_ = capture_time;
+    fused_velocity_sigma_mps_ = std::sqrt(position_.velocity_covariance().diagonal().maxCoeff());
     estimate_.state = TrackingState::tracking;
     estimate_.measurement_time = capture_time;
     ++estimate_.counters.accepted;
     jump_count_ = 0;
     return SampleOutcome::accepted;
-  }
-  if (was_lost) {
-    // The body came back far from where it was lost: start again there.
-    start(capture_time, p_ned_m, q_ned_frd, false);
-    return SampleOutcome::reset;
   }
   return handle_gated(capture_time, p_ned_m, q_ned_frd);
 }
@@ -203,15 +232,42 @@ SampleOutcome Tracker::handle_gated(SourceTime capture_time, const Eigen::Vector
   jump_q_ned_frd_ = q_ned_frd.normalized();
   jump_time_ = capture_time;
   if (jump_count_ >= config_.jump_confirm_frames) {
-    start(capture_time, p_ned_m, q_ned_frd, true);
+    // Seen in consecutive frames: the body cannot have got there (it left the gate from one
+    // frame to the next and stayed away), so this is a jump whatever its size.
+    start(capture_time, p_ned_m, q_ned_frd, true, true);
     return SampleOutcome::reset;
   }
   ++estimate_.counters.rejected_outliers;
   return SampleOutcome::rejected_outlier;
 }
 
+bool Tracker::beyond_reach(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
+                           const Eigen::Quaterniond& q_ned_frd) const {
+  // Where the body could have got to: the filter's prediction (the filter is predicted at most
+  // to loss_timeout_ms past the last fused sample, or to this sample inside reset_after_ms;
+  // beyond, on at its velocity) ...
+  const double ahead_s = std::max(0.0, to_seconds(capture_time - filter_time_));
+  const Eigen::Vector3d predicted_m = position_.p_m() + ahead_s * position_.v_mps();
+  // ... widened by the gap times how uncertain the velocity was, capped (kReachMaxJumps).
+  const double gap_s = to_seconds(capture_time - last_valid_time_);
+  const double reach_m =
+      config_.reset_jump_m + std::min(kReachVelocitySigmas * fused_velocity_sigma_mps_ * gap_s,
+                                      (kReachMaxJumps - 1.0) * config_.reset_jump_m);
+  const double turn_rad = attitude_.innovation(q_ned_frd.normalized(), r_attitude_rad2_).nu.norm();
+  return (p_ned_m - predicted_m).norm() > reach_m || turn_rad > config_.reset_jump_rad;
+}
+
+SampleOutcome Tracker::judge_return(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
+                                    const Eigen::Quaterniond& q_ned_frd) {
+  const bool jumped = beyond_reach(capture_time, p_ned_m, q_ned_frd);
+  // Either way the filter starts again at the sample with its velocity unknown (the velocity
+  // covariance says so); only a jump is announced.
+  start(capture_time, p_ned_m, q_ned_frd, false, jumped);
+  return jumped ? SampleOutcome::reset : SampleOutcome::resumed;
+}
+
 void Tracker::start(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
-                    const Eigen::Quaterniond& q_ned_frd, bool keep_rates) {
+                    const Eigen::Quaterniond& q_ned_frd, bool keep_rates, bool jumped) {
   const Eigen::Vector3d v = keep_rates ? position_.v_mps() : Eigen::Vector3d::Zero();
   const Eigen::Vector3d w = keep_rates ? attitude_.w_frd_radps() : Eigen::Vector3d::Zero();
   // First start: the w >= 0 hemisphere; later resets: the hemisphere of the previous output, so
@@ -220,14 +276,16 @@ void Tracker::start(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
       q_ned_frd, initialised_ ? estimate_.q_ned_frd : Eigen::Quaterniond::Identity());
   position_.initialise(p_ned_m, v, r_position_m2_, kInitialVelocityVar, kInitialAccelVar);
   attitude_.initialise(q, w, r_attitude_rad2_, kInitialRateVar);
-  if (initialised_) {
+  if (initialised_ && jumped) {
     ++estimate_.reset_counter;  // uint8_t: wraps 255 -> 0 as ODOMETRY.reset_counter expects
     ++estimate_.counters.resets;
+  } else if (initialised_) {
+    ++estimate_.counters.resumed;
   }
   initialised_ = true;
-  clock_restarted_ = false;
   filter_time_ = capture_time;
   last_valid_time_ = capture_time;
+  fused_velocity_sigma_mps_ = std::sqrt(kInitialVelocityVar);
   jump_count_ = 0;
   estimate_.state = TrackingState::tracking;
   estimate_.measurement_time = capture_time;

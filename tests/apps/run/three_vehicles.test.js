@@ -3,7 +3,8 @@
 // listeners decoding with node-mavlink. Checks per vehicle: only its own body and sysid, the
 // profile's messages and nothing else, valid CRCs and signatures, the rate (±5 % over ≥ 3 s), the
 // pose against the scene's ground truth after the z-up → NED mapping; and the loss behaviour when
-// two bodies are occluded for 300 ms (vision stops, HIL_GPS fix_type 0, reset_counter + 1).
+// two bodies are occluded for 300 ms (vision stops, HIL_GPS fix_type 0; back in place, so
+// reset_counter stays, issue 41, although the gap exceeds reset_after_ms).
 'use strict';
 
 const fs = require('node:fs');
@@ -179,7 +180,7 @@ rate_hz = 20
   assert.ok(gap >= 200 && gap < 600, `ODOMETRY gap ${gap} ms`);
   const before = odometry[gapIndex - 1].m.resetCounter;
   const after = odometry[gapIndex].m.resetCounter;
-  assert.equal(after, (before + 1) % 256, `reset_counter ${before} -> ${after}`);
+  assert.equal(after, before, `reset_counter ${before} -> ${after}: a gap is no jump`);
   const lost = hil2.filter(({ m }) => m.fixType === 0);
   assert.ok(lost.length >= 1, 'quad2 HIL_GPS never reported fix_type 0 while Body2 was occluded');
   const lastLost = lost[lost.length - 1].m.timeUsec;

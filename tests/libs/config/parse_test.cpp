@@ -60,6 +60,8 @@ angular_accel_noise_radps2 = 50.5
 gate_sigma = 5
 gate_min_m = 0.05
 jump_confirm_frames = 3
+reset_jump_m = 0.1
+reset_jump_rad = 0.2
 
 [http]
 listen = "[::1]:0"
@@ -126,6 +128,8 @@ TEST(ParseConfig, GoodFileGivesTypedValues) {
   EXPECT_EQ(c.tracking.gate_sigma, 5.0);
   EXPECT_EQ(c.tracking.gate_min_m, 0.05);
   EXPECT_EQ(c.tracking.jump_confirm_frames, 3u);
+  EXPECT_EQ(c.tracking.reset_jump_m, 0.1);
+  EXPECT_EQ(c.tracking.reset_jump_rad, 0.2);
 
   EXPECT_EQ(c.http.listen, (HostPort{"::1", 0}));
   EXPECT_EQ(c.http.token, "0123456789abcdef");

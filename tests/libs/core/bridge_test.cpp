@@ -191,7 +191,7 @@ TEST(BridgeFrames, LostBodyStopsPosesAndGpsReportsNoFix) {
   ASSERT_EQ(events.size(), 1U);
   EXPECT_EQ(events[0].kind, BridgeEventKind::body_lost);
   EXPECT_EQ(events[0].subject, "Quad");
-  // Re-acquired after 1 s: tracking again, reset_counter incremented (long loss).
+  // Re-acquired in place after 1 s: tracking again; a gap is no jump, reset_counter unchanged.
   events.clear();
   for (std::uint64_t n = 151; n <= 160; ++n) {
     out = bridge.on_frame(frame_at(n, true, true), received_at(n));
@@ -199,20 +199,20 @@ TEST(BridgeFrames, LostBodyStopsPosesAndGpsReportsNoFix) {
     odometry += of_type<mavlink::Odometry>(out).size();
   }
   EXPECT_GE(odometry, 1U);
-  ASSERT_EQ(events.size(), 2U);
-  EXPECT_EQ(events[0].kind, BridgeEventKind::body_reset);
-  EXPECT_EQ(events[1].kind, BridgeEventKind::body_tracking);
-  EXPECT_EQ(bridge.snapshot(received_at(160)).bodies[0].estimate.reset_counter, 1);
+  ASSERT_EQ(events.size(), 1U);
+  EXPECT_EQ(events[0].kind, BridgeEventKind::body_tracking);
+  EXPECT_EQ(bridge.snapshot(received_at(160)).bodies[0].estimate.reset_counter, 0);
 }
 
-TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAsAReset) {
+TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAndResetsOnlyMovedBodies) {
   Bridge bridge = make_bridge(two_vehicles());
   for (std::uint64_t n = 1; n <= 50; ++n) bridge.on_frame(frame_at(n, true, true), received_at(n));
   EXPECT_EQ(bridge.snapshot(received_at(50)).bodies[0].estimate.reset_counter, 0);
   // A reordered datagram (20 ms late) is not a restart: refused by the trackers, nothing sent.
   EXPECT_TRUE(bridge.on_frame(frame_at(48, true, true), received_at(50)).messages.empty());
   EXPECT_EQ(bridge.snapshot(received_at(50)).source_restarts, 0U);
-  // The mocap server restarts: its clock (and frame numbers) start again from frame 1, 2 s later.
+  // The mocap server restarts: its clock (and frame numbers) start again from frame 1, 2 s later,
+  // the bodies where they were.
   std::size_t odometry = 0;
   std::uint8_t reset_counter = 0;
   for (std::uint64_t n = 1; n <= 50; ++n) {
@@ -221,11 +221,30 @@ TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAsAReset) {
       ++odometry;
       reset_counter = o.reset_counter;
     }
+    EXPECT_TRUE(std::none_of(out.events.begin(), out.events.end(), [](const BridgeEvent& e) {
+      return e.kind == BridgeEventKind::body_reset;
+    }));
   }
   EXPECT_NEAR(static_cast<double>(odometry), 25.0, 1.0);  // not refused as "time going back"
-  EXPECT_EQ(reset_counter, 1);                            // the vehicle sees a reset
-  const auto s = bridge.snapshot(received_at(50) + seconds(2));
+  EXPECT_EQ(reset_counter, 0);                            // a restart alone is no jump
+  auto s = bridge.snapshot(received_at(50) + seconds(2));
   EXPECT_EQ(s.source_restarts, 1U);
+  EXPECT_EQ(s.bodies[0].estimate.counters.resumed, 1U);
+  EXPECT_EQ(s.bodies[1].estimate.reset_counter, 0);
+  // Restarted again 0.3 s later, and the rover's rigid body was re-defined 1 m off meanwhile: the
+  // rover's pose jumped (one increment, one event), the quad's did not.
+  std::size_t resets = 0;
+  for (std::uint64_t n = 1; n <= 50; ++n) {
+    MocapFrame f = frame_at(n, true, true);
+    f.bodies[1].p_world_m.x() += 1.0;
+    const BridgeOutput out = bridge.on_frame(f, received_at(n) + milliseconds(2800));
+    for (const auto& e : out.events) resets += e.kind == BridgeEventKind::body_reset ? 1 : 0;
+  }
+  s = bridge.snapshot(received_at(50) + seconds(3));
+  EXPECT_EQ(s.source_restarts, 2U);
+  EXPECT_EQ(resets, 1U);
+  EXPECT_EQ(s.bodies[0].name, "Quad");
+  EXPECT_EQ(s.bodies[0].estimate.reset_counter, 0);
   EXPECT_EQ(s.bodies[1].estimate.reset_counter, 1);
 }
 
@@ -801,7 +820,8 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
   c.vehicles[4].rate_hz = 25.0;
   c.vehicles[7].enabled = false;
   const VehicleSpec off = c.vehicles[7];
-  // Frame n; the source restarts at frame 250 (its clock 2 s back: more than loss_timeout_ms).
+  // Frame n; the source restarts at frame 250 (its clock 2 s back: more than loss_timeout_ms)
+  // with its origin re-defined 2 m away (every body's pose jumps).
   const auto frame = [](std::uint64_t n) {
     MocapFrame f = frame_at(n, n < 100 || n > 200, true);  // Quad lost for a second
     if (n >= 250) f.capture_time -= seconds(2);
@@ -810,6 +830,9 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
     f.bodies.push_back(extra);
     extra.name = "Spare";
     if (n % 100 < 50) f.bodies.push_back(extra);  // Spare comes and goes
+    if (n >= 250) {
+      for (BodySample& b : f.bodies) b.p_world_m.x() += 2.0;
+    }
     return f;
   };
   const auto same_figures = [](const BridgeSnapshot& a, const BridgeSnapshot& b) {
@@ -898,7 +921,7 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
       same_figures(eager.snapshot(t), whole.snapshot(t));
     }
     EXPECT_GE(kinds[BridgeEventKind::body_lost], 2u);   // the Quad, and Spare in frames 50-99
-    EXPECT_GE(kinds[BridgeEventKind::body_reset], 3u);  // the restart resets every body
+    EXPECT_GE(kinds[BridgeEventKind::body_reset], 3u);  // the moved origin resets every body
     EXPECT_EQ(whole.snapshot(received_at(300)).source_restarts, 1u);
     EXPECT_EQ(sent_whole.size(), 7u);    // every live, enabled vehicle sent something
     EXPECT_EQ(sent_whole.count(5), 0u);  // "gone", then the disabled "off"

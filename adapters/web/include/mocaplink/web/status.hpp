@@ -36,7 +36,7 @@ struct BodyView {
   /// Samples the Tracker refused: gated outliers plus invalid input (NaN, non-unit quaternion,
   /// time going backwards). Cumulative.
   std::uint64_t rejected = 0;
-  std::uint64_t resets = 0;  ///< filter re-initialisations (ODOMETRY reset_counter increments)
+  std::uint64_t resets = 0;  ///< pose jumps (ODOMETRY reset_counter increments)
 };
 
 /// The bridge's latency figures (ms): the latest frame's and percentiles of the latest frames.

@@ -30,11 +30,14 @@ enum class TrackingState {
 enum class SampleOutcome {
   accepted,          ///< measurement fused into the filter
   initialised,       ///< first valid sample ever: filter started at it (reset_counter unchanged)
-  reset,             ///< filter re-initialised: after a gap > reset_after_ms, a return far from
-                     ///< prediction, or a jump confirmed by jump_confirm_frames (reset_counter++)
+  reset,             ///< the pose jumped: back from a gap (or a source clock restart) farther from
+                     ///< the prediction than the jump thresholds, or a jump confirmed by
+                     ///< jump_confirm_frames; filter re-initialised there (reset_counter++)
   rejected_outlier,  ///< outside the innovation gate: not fused, estimate is the prediction
   invalid_input,     ///< refused (see InvalidInput), not fused
   untracked,         ///< body occluded / absent in this frame
+  resumed,  ///< back from a gap where the body could have got to: the stream continues, the filter
+            ///< re-initialised there with its velocity unknown (reset_counter unchanged)
 };
 [[nodiscard]] std::string_view to_string(SampleOutcome outcome);
 
@@ -51,11 +54,12 @@ inline constexpr std::size_t kInvalidInputCount = 4;
 /// Monotonic counters since the Tracker was created (never reset, not even by a filter reset).
 struct TrackerCounters {
   std::uint64_t samples = 0;    ///< tracked samples offered (valid or not)
-  std::uint64_t accepted = 0;   ///< fused (accepted + initialised + reset outcomes)
+  std::uint64_t accepted = 0;   ///< fused (accepted + initialised + reset + resumed outcomes)
   std::uint64_t untracked = 0;  ///< frames in which the body was occluded or absent
   std::uint64_t rejected_outliers =
-      0;                     ///< gated out (includes a jump's samples before it is confirmed)
-  std::uint64_t resets = 0;  ///< filter re-initialisations (reset_counter increments)
+      0;                      ///< gated out (includes a jump's samples before it is confirmed)
+  std::uint64_t resets = 0;   ///< pose jumps announced (reset_counter increments)
+  std::uint64_t resumed = 0;  ///< returns after a gap that continued the stream (no increment)
   std::array<std::uint64_t, kInvalidInputCount> invalid_input{};  ///< indexed by InvalidInput
 
   [[nodiscard]] std::uint64_t invalid(InvalidInput reason) const {
@@ -96,7 +100,8 @@ struct BodyEstimate {
   /// For a body-frame velocity use v_frd_mps() and velocity_covariance_frd().
   Matrix6d velocity_covariance = Matrix6d::Zero();
 
-  /// Incremented (wrapping 255 -> 0) at every filter reset; MAVLink ODOMETRY.reset_counter.
+  /// Incremented (wrapping 255 -> 0) when the pose jumped (SampleOutcome::reset) and never for a
+  /// gap alone; MAVLink ODOMETRY.reset_counter.
   std::uint8_t reset_counter = 0;
   TrackerCounters counters;
 

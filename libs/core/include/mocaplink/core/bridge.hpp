@@ -16,8 +16,10 @@
 //
 // A frame whose capture time is more than loss_timeout_ms earlier than the latest one means the
 // source restarted (its clock started again; reordered datagrams are only a few frames late, and
-// the Trackers refuse those): the Trackers are replaced (their filters hold the old clock's
-// times) and every body's reset_counter advances, so the vehicles treat the next pose as a reset.
+// the Trackers refuse those): every Tracker moves its time line onto the new clock with the
+// outage's length in host time (Tracker::on_clock_restart) and judges the body's next pose as a
+// return after that gap — reset_counter advances only for a body that is not where it could have
+// got to (docs/frames.md "Gaps and jumps"); a restart alone is no jump.
 //
 // Per frame: every tracker gets its body's sample (on_sample), or on_missing when the body is not
 // in the frame, once; each enabled vehicle's Sender sees its body's estimate after that body's
@@ -117,7 +119,7 @@ struct BridgeConfigError {
 enum class BridgeEventKind : std::uint8_t {
   body_tracking,  ///< a body (re)gained tracking (text: after how long / reset)
   body_lost,      ///< a body went LOST
-  body_reset,     ///< a body's filter was re-initialised (reset_counter incremented)
+  body_reset,     ///< a body's pose jumped (reset_counter incremented)
   vehicle_link,   ///< a vehicle's heartbeat state changed (alive / silent)
   origin_state,   ///< a vehicle's origin state changed (confirmed / conflict / sending)
   agreement,      ///< a vehicle's agreement verdict changed
@@ -284,10 +286,7 @@ class Bridge {
     Tracker tracker;
     TrackingState last_state = TrackingState::unseen;
     std::uint8_t last_reset_counter = 0;
-    /// Added to the tracker's reset_counter: a source restart replaces the Tracker (its counter
-    /// starts at 0 again) and must still look like a reset to the vehicles (§6).
-    std::uint8_t reset_base = 0;
-    BodyEstimate published;  ///< tracker.estimate() with reset_base applied: what is sent
+    BodyEstimate published;  ///< tracker.estimate() after this frame: what is sent
     /// Where this body was in the last frame's body list: sources list bodies in a stable order,
     /// so looking there first finds it without comparing every name (track_body()).
     std::size_t frame_index_hint = 0;
@@ -343,7 +342,9 @@ class Bridge {
   const MocapFrame* frame_ = nullptr;  // begin_frame … end_frame: the frame being tracked
   std::uint64_t frame_number_ = 0;     // frames begun (Body::tracked_frame compares with it)
   bool frame_restarted_ = false;       // the current frame is the first after a source restart
-  bool all_tracked_ = false;           // track_bodies() ran in this frame (asserted by track_body)
+  std::optional<HostTime> last_received_;  // when the previous frame was handed over
+  Duration restart_gap_{};    // host time from the old clock's last frame to the restart frame
+  bool all_tracked_ = false;  // track_bodies() ran in this frame (asserted by track_body)
   std::uint64_t source_restarts_ = 0;
   /// Capture → received of recent frames (received − the capture time placed on the host clock,
   /// which includes the latency the source reports): the set-up's delay recommendation.

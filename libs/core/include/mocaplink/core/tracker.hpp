@@ -7,8 +7,15 @@
 // Time: SourceTime capture timestamps only; the Tracker never reads a clock. Each call must carry a
 // capture time later than the previous call's, otherwise the input is refused and counted
 // (duplicate or out-of-order frame) — except a step back of more than reset_after_ms, which is
-// taken as a restart of the source's clock: the body turns LOST and the next valid sample
-// re-initialises the filter (reset_counter++).
+// taken as a restart of the source's clock (the Bridge says so earlier, with the outage's length,
+// through on_clock_restart): the body turns LOST and the next valid sample is judged as a return
+// after a gap.
+//
+// reset_counter means the pose jumped, nothing else (docs/frames.md "Gaps and jumps"). A return
+// after a gap continues the stream when it lies where the body could have got to: within
+// reset_jump_m of the filter's prediction (widened by 3 sigma of the last velocity estimate times
+// the gap) and within reset_jump_rad of its attitude. Only a return beyond that, or a persisting
+// jump seen between consecutive frames (jump_confirm_frames), increments it.
 // Not thread-safe: one owner (the Station) calls it; copy estimate() to share.
 #pragma once
 
@@ -33,8 +40,17 @@ struct TrackerConfig {
   /// No valid sample for this long (source time) -> state LOST. > 0.
   double loss_timeout_ms = 250.0;
   /// A gap without valid samples longer than this -> the next valid sample re-initialises the
-  /// filter (reset_counter++), wherever it is. >= loss_timeout_ms.
+  /// filter there with its velocity unknown; reset_counter++ only if that sample is beyond the
+  /// jump thresholds below. >= loss_timeout_ms.
   double reset_after_ms = 1000.0;
+  /// Jump thresholds of a return after a gap: a pose farther than this from the prediction (m) or
+  /// turned by more than this (rad) is announced as a jump (reset_counter++); nearer, the
+  /// autopilot takes it as an ordinary measurement. Defaults from the tightest default innovation
+  /// gate of the autopilots (docs/frames.md "Gaps and jumps"): PX4 EKF2_EVP_GATE 5 SD x the
+  /// EKF2_EVP_NOISE floor 0.1 m; 3 SD x the EKF2_EVA_NOISE floor 0.1 rad. Lower them with the
+  /// floors. > 0.
+  double reset_jump_m = 0.5;
+  double reset_jump_rad = 0.3;
   /// Standard deviation of mocap position noise per axis, m. > 0.
   double position_noise_m = 0.0005;
   /// Standard deviation of mocap attitude noise per axis, rad. > 0.
@@ -98,6 +114,12 @@ class Tracker {
   /// non-increasing time).
   SampleOutcome on_missing(SourceTime capture_time);
 
+  /// The source's clock started again (a server restart, a recording looped): the next call
+  /// carries `first_new_time` on the new clock, `gap` (>= 0, host time) after the last call on
+  /// the old one. The Tracker moves its time line onto the new clock, turns LOST, and judges the
+  /// next valid sample as a return after that gap. Nothing before the first call: no-op.
+  void on_clock_restart(SourceTime first_new_time, Duration gap);
+
   /// The estimate after the latest call (state unseen before the first valid sample).
   [[nodiscard]] const BodyEstimate& estimate() const { return estimate_; }
   [[nodiscard]] const TrackerConfig& config() const { return config_; }
@@ -111,8 +133,13 @@ class Tracker {
                      const Eigen::Quaterniond& q_ned_frd);
   SampleOutcome handle_gated(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
                              const Eigen::Quaterniond& q_ned_frd);
+  [[nodiscard]] bool beyond_reach(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
+                                  const Eigen::Quaterniond& q_ned_frd) const;
+  SampleOutcome judge_return(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
+                             const Eigen::Quaterniond& q_ned_frd);
   void start(SourceTime capture_time, const Eigen::Vector3d& p_ned_m,
-             const Eigen::Quaterniond& q_ned_frd, bool keep_rates);
+             const Eigen::Quaterniond& q_ned_frd, bool keep_rates, bool jumped);
+  void shift_time(Duration offset);
   void publish(SourceTime capture_time, SampleOutcome outcome);
 
   TrackerConfig config_;
@@ -124,7 +151,9 @@ class Tracker {
   PositionFilter position_;
   AttitudeFilter attitude_;
   bool initialised_ = false;
-  bool clock_restarted_ = false;               ///< capture time jumped back > reset_after_ms
+  /// 1 sigma of the velocity estimate at the last fused sample, m/s (the largest axis): how fast
+  /// the prediction of a body lost from there may be off.
+  double fused_velocity_sigma_mps_ = 0.0;
   std::optional<SourceTime> last_input_time_;  ///< last accepted capture time of any call
   SourceTime filter_time_{};                   ///< time the filter state refers to
   SourceTime last_valid_time_{};               ///< last valid (finite, unit) sample
