@@ -24,10 +24,9 @@ std::optional<mavlink::SignatureVerifier> make_verifier(
 Link::Link(LinkOptions options)
     : options_(std::move(options)),
       verifier_(make_verifier(options_.verify_key)),
-      parser_(verifier_ ? &*verifier_ : nullptr) {
+      parser_(verifier_ ? &*verifier_ : nullptr),
+      backoff_(options_.retry) {
   options_.max_backlog_bytes = std::max(options_.max_backlog_bytes, mavlink::kMaxFrameSize);
-  options_.retry_min = std::max(options_.retry_min, std::chrono::milliseconds{1});
-  options_.retry_max = std::max(options_.retry_max, options_.retry_min);
 }
 
 LinkCounters Link::counters() const noexcept {
@@ -79,12 +78,6 @@ void Link::report_state(const std::string& detail) {
 void Link::set_handlers(FrameHandler on_frame, StateHandler on_state) {
   on_frame_ = std::move(on_frame);
   on_state_ = std::move(on_state);
-}
-
-std::chrono::milliseconds Link::next_backoff() noexcept {
-  backoff_ =
-      backoff_.count() == 0 ? options_.retry_min : std::min(backoff_ * 2, options_.retry_max);
-  return backoff_;
 }
 
 bool Link::send_forwarded(std::span<const std::uint8_t> frame) {

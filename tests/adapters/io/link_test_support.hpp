@@ -26,15 +26,15 @@ inline const std::vector<std::uint8_t> kHeartbeatSigned = {
     0x00, 0x00, 0x12, 0x08, 0x00, 0x04, 0x03, 0x7e, 0xfe, 0x01, 0x00, 0xb8,
     0x89, 0x93, 0xb3, 0x1c, 0xbe, 0x3a, 0x9d, 0x79, 0x2e, 0x48};
 
-/// Link options for tests: fast retries, optional verification key.
+/// Link options for tests: retries after retry_min, then doubling to retry_max (no short
+/// interval phase), optional verification key.
 inline LinkOptions options(std::chrono::milliseconds retry_min = std::chrono::milliseconds(250),
                            std::chrono::milliseconds retry_max = std::chrono::milliseconds(4000),
                            std::optional<mavlink::SigningKey> key = std::nullopt) {
   LinkOptions o;
   o.name = "v";
   o.verify_key = std::move(key);
-  o.retry_min = retry_min;
-  o.retry_max = retry_max;
+  o.retry = core::RetryPolicy{retry_min, retry_min, std::chrono::milliseconds(0), retry_max};
   return o;
 }
 

@@ -121,7 +121,8 @@ NatnetSourceOptions options(std::uint16_t port) {
   o.target.transport = NatnetTransport::unicast;
   o.target.data_port = 1;  // not bindable without privileges: frames on the command socket
   o.connect_retry = std::chrono::milliseconds(50);
-  o.backoff_initial = std::chrono::milliseconds(20);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(20), std::chrono::milliseconds(20),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(5000)};
   o.model_retry = std::chrono::milliseconds(0);  // frames arrive in a burst here
   return o;
 }

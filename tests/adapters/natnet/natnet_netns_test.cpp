@@ -24,7 +24,8 @@ TEST(NatnetNetns, MulticastWithMotiveDefaultsOnTheDefaultInterface) {
   ASSERT_EQ(server->port(), 1510);
   NatnetSourceOptions co;
   co.target.host = "127.0.0.1";  // natnet://127.0.0.1: everything else from the server info
-  co.backoff_initial = std::chrono::milliseconds(20);
+  co.retry = core::RetryPolicy{std::chrono::milliseconds(20), std::chrono::milliseconds(20),
+                               std::chrono::milliseconds(0), std::chrono::milliseconds(5000)};
   NatnetSource client(co, "natnet://127.0.0.1");
   test::Collector got;
   client.start(got.frame_sink(), got.state_sink());

@@ -52,8 +52,8 @@ inline NatnetSourceOptions natnet_client(std::uint16_t port) {
   o.target.local = "127.0.0.1";
   o.connect_retry = std::chrono::milliseconds(50);
   o.silence_timeout = std::chrono::milliseconds(500);
-  o.backoff_initial = std::chrono::milliseconds(20);
-  o.backoff_max = std::chrono::milliseconds(200);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(20), std::chrono::milliseconds(20),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(200)};
   o.model_retry = std::chrono::milliseconds(20);
   return o;
 }

@@ -147,8 +147,8 @@ TEST(QtmHostileServer, CountsEveryFaultReconnectsAndStillDecodes) {
   QtmSourceOptions o;
   o.target.host = "127.0.0.1";
   o.target.port = port;
-  o.backoff_initial = std::chrono::milliseconds(10);
-  o.backoff_max = std::chrono::milliseconds(20);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(10), std::chrono::milliseconds(10),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(20)};
   o.parameters_retry = std::chrono::milliseconds(10);
   QtmSource source(o, "qtm://hostile");
   Collector got;

@@ -82,8 +82,8 @@ QtmSourceOptions client_options(std::uint16_t port) {
   QtmSourceOptions o;
   o.target.host = "127.0.0.1";
   o.target.port = port;
-  o.backoff_initial = std::chrono::milliseconds(20);
-  o.backoff_max = std::chrono::milliseconds(100);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(20), std::chrono::milliseconds(20),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(100)};
   return o;
 }
 

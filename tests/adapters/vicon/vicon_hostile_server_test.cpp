@@ -119,8 +119,8 @@ TEST(ViconHostileServer, CountsEveryFaultReconnectsAndStillDecodes) {
 
   ViconSourceOptions o;
   o.target = ViconOptions{"127.0.0.1", server.port(), vw::StreamMode::server_push};
-  o.backoff_initial = std::chrono::milliseconds(10);
-  o.backoff_max = std::chrono::milliseconds(40);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(10), std::chrono::milliseconds(10),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(40)};
   o.max_body_bytes = 1024 * 1024;
   ViconSource client(o, "vicon://hostile");
   test::Collector got;

@@ -39,8 +39,8 @@ std::unique_ptr<ViconServer> start_server(std::uint16_t port, double offset_m,
 ViconSourceOptions client_options(std::uint16_t port, StreamMode mode) {
   ViconSourceOptions o;
   o.target = ViconOptions{"127.0.0.1", port, mode};
-  o.backoff_initial = std::chrono::milliseconds(20);
-  o.backoff_max = std::chrono::milliseconds(200);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(20), std::chrono::milliseconds(20),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(200)};
   return o;
 }
 

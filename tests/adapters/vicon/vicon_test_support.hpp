@@ -26,6 +26,7 @@ struct Event {
   core::MocapFrame frame;
   SourceState state = SourceState::connecting;
   std::string detail;
+  std::chrono::steady_clock::time_point at;  ///< when the sink was called
 };
 
 class Collector {
@@ -33,14 +34,14 @@ class Collector {
   FrameSink frame_sink() {
     return [this](core::MocapFrame f, core::HostTime) {
       std::lock_guard lock(mutex_);
-      events_.push_back(Event{true, std::move(f), {}, {}});
+      events_.push_back(Event{true, std::move(f), {}, {}, std::chrono::steady_clock::now()});
       cv_.notify_all();
     };
   }
   StateSink state_sink() {
     return [this](SourceState s, const std::string& detail) {
       std::lock_guard lock(mutex_);
-      events_.push_back(Event{false, {}, s, detail});
+      events_.push_back(Event{false, {}, s, detail, std::chrono::steady_clock::now()});
       cv_.notify_all();
     };
   }

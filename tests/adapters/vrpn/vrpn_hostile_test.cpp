@@ -84,8 +84,8 @@ void expect_refused(const std::vector<std::byte>& script, const char* what) {
   VrpnSourceOptions o;
   o.target.host = "127.0.0.1";
   o.target.port = server.port();
-  o.backoff_initial = std::chrono::milliseconds(10);
-  o.backoff_max = std::chrono::milliseconds(20);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(10), std::chrono::milliseconds(10),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(20)};
   VrpnSource client(o, "vrpn://hostile");
   test::Collector got;
   client.start(got.frame_sink(), got.state_sink());

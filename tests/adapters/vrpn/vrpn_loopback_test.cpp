@@ -38,8 +38,8 @@ VrpnSourceOptions client_options(std::uint16_t port, std::vector<std::string> tr
   o.target.host = "127.0.0.1";
   o.target.port = port;
   o.target.trackers = std::move(trackers);
-  o.backoff_initial = std::chrono::milliseconds(20);
-  o.backoff_max = std::chrono::milliseconds(200);
+  o.retry = core::RetryPolicy{std::chrono::milliseconds(20), std::chrono::milliseconds(20),
+                              std::chrono::milliseconds(0), std::chrono::milliseconds(200)};
   return o;
 }
 

@@ -40,7 +40,7 @@ class NatnetSource::Session {
         opts_(owner.options_),
         on_frame_(std::move(on_frame)),
         state_(std::move(on_state)),
-        backoff_(opts_.backoff_initial, opts_.backoff_max) {}
+        backoff_(opts_.retry) {}
 
   void run() {
     asio::post(io_, [this] { connect(); });
@@ -464,7 +464,7 @@ class NatnetSource::Session {
   SteadyClock::time_point last_revalidate_{};
   std::uint64_t generation_ = 0;
   std::uint64_t attempts_ = 0;
-  Backoff backoff_;
+  core::RetrySchedule backoff_;
 };
 
 NatnetSource::NatnetSource(NatnetSourceOptions options, std::string url)

@@ -42,7 +42,7 @@ class QtmSource::Session {
         opts_(owner.options_),
         on_frame_(std::move(on_frame)),
         report_(std::move(on_state)),
-        backoff_(opts_.backoff_initial, opts_.backoff_max) {}
+        backoff_(opts_.retry) {}
 
   void run() {
     asio::post(io_, [this] { connect(); });
@@ -463,7 +463,7 @@ class QtmSource::Session {
   std::chrono::steady_clock::time_point last_packet_{};
   std::uint64_t generation_ = 0;
   std::uint64_t attempts_ = 0;
-  Backoff backoff_;
+  core::RetrySchedule backoff_;
 };
 
 QtmSource::QtmSource(QtmSourceOptions options, std::string url)

@@ -37,7 +37,7 @@ class ViconSource::Session {
         opts_(owner.options_),
         on_frame_(std::move(on_frame)),
         report_(std::move(on_state)),
-        backoff_(opts_.backoff_initial, opts_.backoff_max) {}
+        backoff_(opts_.retry) {}
 
   void run() {
     asio::post(io_, [this] { connect(); });
@@ -299,7 +299,7 @@ class ViconSource::Session {
   bool greeted_ = false;
   std::uint64_t generation_ = 0;
   std::uint64_t attempts_ = 0;
-  Backoff backoff_;
+  core::RetrySchedule backoff_;
   std::optional<std::uint32_t> last_frame_id_;
   SteadyClock::duration period_ = kDefaultPeriod;
   SteadyClock::time_point last_pull_{};

@@ -111,7 +111,7 @@ class VrpnSource::Session {
     if (!cookie) return drop(link, "bad cookie: " + cookie.error().reason, true);
     link->accepted = true;
     deadline_.cancel();
-    backoff_ = opts_.backoff_initial;
+    backoff_.reset();
     ++owner_.vrpn_counters_.connections;
     {
       const std::lock_guard lock(owner_.mutex_);
@@ -251,8 +251,7 @@ class VrpnSource::Session {
     idle_.cancel();
     assembler_.reset();  // the round and the poses of this connection never reach a frame
     report_state(SourceState::disconnected, reason);
-    retry_.expires_after(backoff_);
-    backoff_ = std::min(backoff_ * 2, opts_.backoff_max);
+    retry_.expires_after(backoff_.next());
     retry_.async_wait([this](const asio::error_code& ec) {
       if (!ec) open();
     });
@@ -276,7 +275,7 @@ class VrpnSource::Session {
   tcp::resolver resolver_{io_};
   LinkPtr link_;
   asio::steady_timer deadline_{io_}, silence_{io_}, idle_{io_}, retry_{io_};
-  std::chrono::milliseconds backoff_ = opts_.backoff_initial;
+  core::RetrySchedule backoff_{opts_.retry};
   std::uint64_t opened_ = 0;
   bool senders_changed_ = false;
 };

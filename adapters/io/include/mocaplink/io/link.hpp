@@ -26,6 +26,7 @@
 #include <string>
 #include <string_view>
 
+#include "mocaplink/core/retry_schedule.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/mavlink/signing.hpp"
@@ -90,9 +91,9 @@ struct LinkOptions {
   /// Stream links (TCP, serial) queue at most this many bytes not yet written; frames beyond are
   /// dropped (dropped_backlog) so a slow link sheds load instead of adding latency. ≥ 280.
   std::size_t max_backlog_bytes = 16 * 1024;
-  /// Back-off between reconnect/reopen attempts: starts at the minimum, doubles up to the maximum.
-  std::chrono::milliseconds retry_min{250};
-  std::chrono::milliseconds retry_max{4000};
+  /// When to reconnect/reopen after a loss: at once (50 ms), then every 200 ms for 5 s, then
+  /// doubling up to 4 s (core/retry_schedule.hpp, the schedule the mocap sources use).
+  core::RetryPolicy retry{.max = std::chrono::milliseconds{4000}};
   /// The vehicle's MAVLink system id, when known. A listening link (udpin://) follows only the
   /// address that frames of this system come from, so that another program on its port (a ground
   /// station's heartbeat) cannot take the vehicle's poses. Unset: any accepted frame counts.
@@ -174,9 +175,9 @@ class Link {
   /// now speaks from another address), without changing it.
   void report_state(const std::string& detail);
   void set_handlers(FrameHandler on_frame, StateHandler on_state);
-  /// Next back-off delay (retry_min, doubling to retry_max); reset_backoff() after a success.
-  [[nodiscard]] std::chrono::milliseconds next_backoff() noexcept;
-  void reset_backoff() noexcept { backoff_ = std::chrono::milliseconds{0}; }
+  /// Next delay of options().retry's schedule; reset_backoff() after a success.
+  [[nodiscard]] std::chrono::milliseconds next_backoff() noexcept { return backoff_.next(); }
+  void reset_backoff() noexcept { backoff_.reset(); }
 
   LinkOptions options_;
   LinkCounters counters_;  // parser field unused here: counters() fills it from parser_
@@ -188,7 +189,7 @@ class Link {
   FrameHandler on_frame_;
   StateHandler on_state_;
   TransportState state_ = TransportState::connecting;
-  std::chrono::milliseconds backoff_{0};
+  core::RetrySchedule backoff_;
 };
 
 }  // namespace mocaplink::io

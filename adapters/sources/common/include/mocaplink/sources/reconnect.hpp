@@ -1,11 +1,9 @@
 // What every reconnecting network source shares (DESIGN.md "Fault behaviour": reconnect with
 // back-off): its connection state reported once per change — every `disconnected` is reported,
-// each with its own reason — and the delay before the next attempt, doubling up to a maximum and
-// back to the start once a connection worked. Used on the source's own thread.
+// each with its own reason. The delay before the next attempt is core::RetrySchedule (the same
+// for the vehicle links). Used on the source's own thread.
 #pragma once
 
-#include <algorithm>
-#include <chrono>
 #include <string>
 #include <utility>
 
@@ -25,25 +23,6 @@ class StateReporter {
  private:
   StateSink sink_;
   SourceState state_ = SourceState::disconnected;
-};
-
-class Backoff {
- public:
-  Backoff(std::chrono::milliseconds initial, std::chrono::milliseconds max)
-      : initial_(initial), max_(max), next_(initial) {}
-  /// The delay before the next attempt; the one after it is twice as long (at most max).
-  [[nodiscard]] std::chrono::milliseconds next() {
-    const auto now = next_;
-    next_ = std::min(next_ * 2, max_);
-    return now;
-  }
-  /// A connection worked: the next failure waits `initial` again.
-  void reset() { next_ = initial_; }
-
- private:
-  std::chrono::milliseconds initial_;
-  std::chrono::milliseconds max_;
-  std::chrono::milliseconds next_;
 };
 
 }  // namespace mocaplink::sources

@@ -17,8 +17,9 @@
 // NAT_DISCONNECTBYTIMEOUT from the server ends the session (reconnect after the back-off).
 //
 // Faults: a malformed datagram is counted and dropped. No frame for silence_timeout (or no server
-// info within it) drops the connection: state `disconnected` at once, a back-off from
-// backoff_initial doubling to backoff_max, then a new connection that must receive a fresh server
+// info within it) drops the connection: state `disconnected` at once, a retry on the `retry`
+// schedule (core/retry_schedule.hpp: at once, then every 200 ms, later doubling), then a new
+// connection that must receive a fresh server
 // info and model definitions before any frame is delivered again: no stale pose survives. Frames
 // repeated on the second socket are delivered once (duplicate_frames).
 #pragma once
@@ -28,6 +29,7 @@
 #include <cstdint>
 #include <string>
 
+#include "mocaplink/core/retry_schedule.hpp"
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/natnet_options.hpp"
@@ -40,8 +42,9 @@ struct NatnetSourceOptions {
   std::chrono::milliseconds connect_retry{1000};  ///< NAT_CONNECT resent until server info
   std::chrono::milliseconds keep_alive{1000};     ///< unicast NAT_KEEPALIVE period (§1.2)
   std::chrono::milliseconds silence_timeout{3000};
-  std::chrono::milliseconds backoff_initial{500};
-  std::chrono::milliseconds backoff_max{5000};
+  /// When to try again after losing the server: at once (50 ms), then every 200 ms for 5 s, then
+  /// doubling to 5 s (core/retry_schedule.hpp); back to the start once a connection worked.
+  core::RetryPolicy retry{};
   std::chrono::milliseconds model_retry{500};  ///< least time between model requests
 };
 

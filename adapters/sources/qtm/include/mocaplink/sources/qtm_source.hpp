@@ -13,8 +13,9 @@
 //
 // Faults: a packet with a size below 8 or above max_packet_bytes, a bad welcome, a closed socket,
 // or silence (no packet for silence_timeout, then a `ByteOrder` probe unanswered for another
-// silence_timeout) drops the connection and the client reconnects after a back-off that starts at
-// backoff_initial and doubles up to backoff_max (reset once a version was set). A malformed data
+// silence_timeout) drops the connection and the client reconnects on the `retry` schedule
+// (core/retry_schedule.hpp: at once, then every 200 ms, later doubling; reset once a version was
+// set). A malformed data
 // packet or XML is counted (SourceCounters::malformed) and dropped without dropping the
 // connection. State `disconnected` is reported at once and no frame is delivered until the new
 // connection has read fresh parameters and a fresh frame: no stale pose survives a disconnect.
@@ -28,6 +29,7 @@
 #include <string>
 #include <thread>
 
+#include "mocaplink/core/retry_schedule.hpp"
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/qtm_options.hpp"
@@ -37,8 +39,9 @@ namespace mocaplink::sources {
 
 struct QtmSourceOptions {
   QtmOptions target;
-  std::chrono::milliseconds backoff_initial{500};
-  std::chrono::milliseconds backoff_max{5000};
+  /// When to try again after losing the server: at once (50 ms), then every 200 ms for 5 s, then
+  /// doubling to 5 s (core/retry_schedule.hpp); back to the start once a connection worked.
+  core::RetryPolicy retry{};
   std::chrono::milliseconds connect_timeout{5000};
   /// Silence for this long sends a probe; silence for twice this long drops the connection.
   std::chrono::milliseconds silence_timeout{2000};

@@ -8,10 +8,11 @@
 //
 // Faults: a malformed packet, a body above max_body_bytes, a wrong tag, a closed socket or
 // `silence_timeout` without any packet drops the connection (malformed is counted when the bytes
-// were at fault) and the client reconnects after a back-off that starts at backoff_initial and
-// doubles up to backoff_max (reset once a greeting was received). State `disconnected` is reported
-// at once and no frame is delivered until a new connection has decoded a fresh frame: no stale pose
-// survives a disconnect. Pull mode repeats are not delivered twice (counted as repeated_frames).
+// were at fault) and the client reconnects on the `retry` schedule (core/retry_schedule.hpp: at
+// once, then every 200 ms, later doubling; reset once a greeting was received). State
+// `disconnected` is reported at once and no frame is delivered until a new connection has decoded a
+// fresh frame: no stale pose survives a disconnect. Pull mode repeats are not delivered twice
+// (counted as repeated_frames).
 #pragma once
 
 #include <atomic>
@@ -23,6 +24,7 @@
 #include <thread>
 #include <variant>
 
+#include "mocaplink/core/retry_schedule.hpp"
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/source.hpp"
@@ -33,8 +35,9 @@ namespace mocaplink::sources {
 
 struct ViconSourceOptions {
   ViconOptions target;
-  std::chrono::milliseconds backoff_initial{500};
-  std::chrono::milliseconds backoff_max{5000};
+  /// When to try again after losing the server: at once (50 ms), then every 200 ms for 5 s, then
+  /// doubling to 5 s (core/retry_schedule.hpp); back to the start once a connection worked.
+  core::RetryPolicy retry{};
   std::chrono::milliseconds connect_timeout{5000};  ///< the SDK's default (§1)
   /// No packet for this long drops the connection. Our emulator sends a KeepAlive every second
   /// when it has nothing else to send; a real server streams continuously.

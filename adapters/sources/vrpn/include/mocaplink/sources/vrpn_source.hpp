@@ -10,10 +10,10 @@
 //
 // Faults: a malformed message (bad length, bad description, bad Pos_Quat), a wrong cookie, a closed
 // socket or `timeout` without a byte drops the connection (malformed counted when the bytes were at
-// fault) and the client reconnects after a back-off that starts at backoff_initial and doubles up
-// to backoff_max (reset once a server cookie was accepted). State `disconnected` is reported at
-// once; the round being assembled is discarded and the id tables are dropped, so no pose of the
-// old connection reaches a frame after it.
+// fault) and the client reconnects on the `retry` schedule (core/retry_schedule.hpp: at once,
+// then every 200 ms, later doubling; reset once a server cookie was accepted). State `disconnected`
+// is reported at once; the round being assembled is discarded and the id tables are dropped, so no
+// pose of the old connection reaches a frame after it.
 #pragma once
 
 #include <atomic>
@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "mocaplink/core/retry_schedule.hpp"
 #include "mocaplink/sources/descriptor.hpp"
 #include "mocaplink/sources/loop_thread.hpp"
 #include "mocaplink/sources/source.hpp"
@@ -34,8 +35,9 @@ namespace mocaplink::sources {
 
 struct VrpnSourceOptions {
   VrpnOptions target;
-  std::chrono::milliseconds backoff_initial{500};
-  std::chrono::milliseconds backoff_max{5000};
+  /// When to try again after losing the server: at once (50 ms), then every 200 ms for 5 s, then
+  /// doubling to 5 s (core/retry_schedule.hpp); back to the start once a connection worked.
+  core::RetryPolicy retry{};
   std::chrono::milliseconds connect_timeout{5000};
 };
 
