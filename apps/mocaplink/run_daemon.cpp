@@ -456,7 +456,9 @@ void Daemon::drain() {
   // sends what we sent), and a slow write delays only the next frames, which are judged after;
   // the newest pose of a backlog never waits for the backlog's rows to be written.
   if (recorder_) {
-    for (std::size_t i = 0; i < batch_.size(); ++i) recorder_->on_frame(batch_[i].frame, fates_[i]);
+    for (std::size_t i = 0; i < batch_.size(); ++i) {
+      recorder_->on_frame(batch_[i].frame, batch_[i].received, fates_[i]);
+    }
   }
   summary_.on_frames(batch_.size());
   late_frames_.end_batch(io::host_now());
@@ -733,6 +735,9 @@ int run_daemon(const DaemonSettings& settings, const sources::SourceRegistry& so
       spdlog::error("--record: {}", error);
       return kExitRuntime;
     }
+    // The Bridge's rule for a restarted source (bridge.hpp): the recording follows it.
+    recorder->set_restart_step_back(std::chrono::duration_cast<core::Duration>(
+        std::chrono::duration<double, std::milli>(settings.config.tracking.loss_timeout_ms)));
     spdlog::info("recording to {}", settings.record_dir->string());
   }
   Daemon daemon(settings, std::move(std::get<core::Bridge>(made)),

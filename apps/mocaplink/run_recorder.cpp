@@ -1,6 +1,8 @@
 #include "run_recorder.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <system_error>
 #include <utility>
 
@@ -72,19 +74,31 @@ void Recorder::write_header(std::optional<double> rate_hz) {
   if (std::fwrite(header.data(), 1, header.size(), csv_) != header.size()) csv_failed_ = true;
 }
 
-void Recorder::on_frame(const core::MocapFrame& frame, FrameFate fate) {
+void Recorder::on_frame(const core::MocapFrame& frame, core::HostTime received, FrameFate fate) {
   if (csv_ == nullptr || csv_failed_) return;
-  if (last_capture_ && frame.capture_time < *last_capture_) {
+  core::SourceTime capture = frame.capture_time + capture_offset_;
+  if (last_capture_ && last_received_ && capture + restart_step_back_ < *last_capture_) {
+    // The source's clock started again: go on from the last frame, after the outage (at least
+    // the format's 1 µs, so the restart frame is a frame of its own).
+    const core::Duration gap =
+        std::max<core::Duration>(received - *last_received_, std::chrono::microseconds(1));
+    capture_offset_ = *last_capture_ + gap - frame.capture_time;
+    capture = frame.capture_time + capture_offset_;
+  }
+  last_received_ = received;
+  if (last_capture_ && capture < *last_capture_) {
     ++frames_skipped_;
     return;
   }
   write_header(frame.frame_rate_hz);
-  if (!first_capture_) first_capture_ = frame.capture_time;
-  last_capture_ = frame.capture_time;
+  if (!first_capture_) first_capture_ = capture;
+  last_capture_ = capture;
   std::optional<std::string_view> comment;
   if (fate == FrameFate::late) comment = kLateComment;
   if (fate == FrameFate::superseded) comment = kSupersededComment;
-  const std::string rows = wire::format_recording_frame(frame, *first_capture_, comment);
+  // time_s = capture - first = frame.capture_time - (first - offset): no copy of the frame.
+  const std::string rows =
+      wire::format_recording_frame(frame, *first_capture_ - capture_offset_, comment);
   if (std::fwrite(rows.data(), 1, rows.size(), csv_) != rows.size()) {
     csv_failed_ = true;
     return;

@@ -49,11 +49,19 @@ class Recorder {
     late,        ///< skipped: too old when the loop took it
     superseded,  ///< skipped: a newer frame with all its bodies was already waiting
   };
-  /// One mocap frame. Frames whose capture time goes back (a restarted server) are skipped and
-  /// counted: the format requires time_s never to decrease. A frame the bridge did not send is
-  /// written as comment lines, each row after "#" and kLateComment or kSupersededComment: kept in
-  /// the file, but replay:// does not deliver it, so a replay sends what the live run sent.
-  void on_frame(const core::MocapFrame& frame, FrameFate fate = FrameFate::sent);
+  /// One mocap frame, handed over at host time `received`. The format requires time_s never to
+  /// decrease: a frame whose capture time goes back by more than restart_step_back (the Bridge's
+  /// own rule for a restarted source: loss_timeout_ms) is a restart, and it and the frames after
+  /// it are written on the old time line, `received` minus the last frame's `received` after the
+  /// last frame — the outage as the Bridge measured it, so a replay's trackers see the gap the
+  /// live ones bridged (issue 41); a smaller step back (a reordered frame, which the trackers
+  /// refuse) is skipped and counted. A frame the bridge did not send is written as comment lines,
+  /// each row after "#" and kLateComment or kSupersededComment: kept in the file, but replay://
+  /// does not deliver it, so a replay sends what the live run sent.
+  void on_frame(const core::MocapFrame& frame, core::HostTime received,
+                FrameFate fate = FrameFate::sent);
+  /// The step back that means a restart (default 250 ms, the default loss_timeout_ms).
+  void set_restart_step_back(core::Duration step) { restart_step_back_ = step; }
   static constexpr std::string_view kLateComment = " late, not sent: ";
   static constexpr std::string_view kSupersededComment = " superseded, not sent: ";
   /// One MAVLink frame sent to or received from the vehicle in slot `vehicle`, at Unix time
@@ -80,7 +88,10 @@ class Recorder {
   bool csv_failed_ = false;
   bool header_written_ = false;
   std::optional<core::SourceTime> first_capture_;
-  std::optional<core::SourceTime> last_capture_;
+  std::optional<core::SourceTime> last_capture_;  ///< on the recording's time line
+  std::optional<core::HostTime> last_received_;
+  core::Duration capture_offset_{};  ///< recording time line - source clock (after restarts)
+  core::Duration restart_step_back_ = std::chrono::milliseconds(250);
   std::vector<std::unique_ptr<io::TlogWriter>> tlogs_;  // by vehicle slot; nullptr: none
   std::set<std::string> opened_;                        // names whose .tlog this recording made
   bool tlog_failed_ = false;                            // a closed or unopened .tlog failed
