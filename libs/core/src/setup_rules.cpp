@@ -177,12 +177,6 @@ bool in_range(const SetupRule& rule, const std::optional<FirmwareVersion>& versi
   return true;
 }
 
-std::string format_value(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 /// "PX4 1.14.3", or "PX4" and `unknown` when the version is not known. Built by appending: GCC
 /// 12 warns (-Wrestrict, a false positive) about `"PX4" + std::string&&` in a Release build.
 std::string px4_with_version(const std::optional<FirmwareVersion>& version,
@@ -198,6 +192,12 @@ std::string px4_with_version(const std::optional<FirmwareVersion>& version,
 }
 
 }  // namespace
+
+std::string format_value(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
 
 AutopilotFamily autopilot_family(std::uint8_t mav_autopilot) {
   switch (mav_autopilot) {

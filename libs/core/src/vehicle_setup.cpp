@@ -29,12 +29,6 @@ constexpr Duration kStatusTextRepeat = std::chrono::seconds(30);
 constexpr std::uint8_t kUint8 = 1, kInt8 = 2, kUint16 = 3, kInt16 = 4, kUint32 = 5, kInt32 = 6,
                        kReal32 = 9, kReal64 = 10;
 
-std::string format_value(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
-}
-
 std::string param_name(const std::array<char, 16>& id) {
   const auto end = std::find(id.begin(), id.end(), '\0');
   return {id.begin(), end};

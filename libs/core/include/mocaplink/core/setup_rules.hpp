@@ -182,4 +182,7 @@ enum class OriginGate : std::uint8_t {
 /// Why the origin is withheld, and what to do (one sentence for the dashboard and the log).
 [[nodiscard]] std::string withheld_origin_advice(const std::optional<FirmwareVersion>& version);
 
+/// A parameter's value as the list and the log write it ("%g": 15, 0.5, 1e+06).
+[[nodiscard]] std::string format_value(double v);
+
 }  // namespace mocaplink::core
