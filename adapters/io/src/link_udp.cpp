@@ -20,34 +20,14 @@ using detail::is_refused;
 
 UdpLink::UdpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options,
                  std::optional<config::HostPort> bind)
-    : Link(std::move(options)),
-      loop_(loop),
+    : UdpSocketLink(loop, std::move(options)),
       host_(std::move(host)),
       port_(port),
-      bind_(std::move(bind)),
-      socket_(loop),
-      retry_timer_(loop) {}
-
-UdpLink::~UdpLink() {
-  std::error_code ignored;
-  retry_timer_.cancel();
-  socket_.close(ignored);
-}
+      bind_(std::move(bind)) {}
 
 std::string UdpLink::url() const {
   return "udp://" + detail::host_port_text(host_, port_) +
          (bind_ ? "?bind=" + detail::host_port_text(bind_->host, bind_->port) : "");
-}
-
-asio::ip::udp::endpoint UdpLink::local_endpoint() const {
-  std::error_code ec;
-  auto endpoint = socket_.local_endpoint(ec);
-  return ec ? asio::ip::udp::endpoint{} : endpoint;
-}
-
-void UdpLink::start(FrameHandler on_frame, StateHandler on_state) {
-  set_handlers(std::move(on_frame), std::move(on_state));
-  open();
 }
 
 void UdpLink::open() {
@@ -75,21 +55,17 @@ void UdpLink::connect(const asio::ip::udp::endpoint& remote) {
         bind_->host, bind_->port, remote.protocol().family() == asio::ip::udp::v6().family(), ec);
     if (!ec) socket_.bind(local, ec);
     if (ec) {
-      std::error_code ignored;
-      socket_.close(ignored);
-      schedule_retry("cannot send from " + detail::host_port_text(bind_->host, bind_->port) +
-                     " to " + url() + ": " + ec.message() +
-                     (ec == asio::error::address_in_use
-                          ? " (another program, or another mocaplink process, owns the port)"
-                          : ""));
+      fail_open("cannot send from " + detail::host_port_text(bind_->host, bind_->port) + " to " +
+                url() + ": " + ec.message() +
+                (ec == asio::error::address_in_use
+                     ? " (another program, or another mocaplink process, owns the port)"
+                     : ""));
       return;
     }
   }
   if (!ec) socket_.connect(remote, ec);
   if (ec) {
-    std::error_code ignored;
-    socket_.close(ignored);
-    schedule_retry("cannot open a UDP socket to " + url() + ": " + ec.message());
+    fail_open("cannot open a UDP socket to " + url() + ": " + ec.message());
     return;
   }
   reset_backoff();
@@ -99,30 +75,9 @@ void UdpLink::connect(const asio::ip::udp::endpoint& remote) {
   receive();
 }
 
-void UdpLink::schedule_retry(const std::string& why) {
-  set_state(TransportState::down, why);
-  retry_timer_.expires_after(next_backoff());
-  retry_timer_.async_wait([this](const std::error_code& error) {
-    if (!error) open();
-  });
-}
-
-void UdpLink::receive() {
-  socket_.async_receive(
-      asio::buffer(receive_buffer_.get(), kReceiveBufferSize),
-      [this](const std::error_code& error, std::size_t n) {
-        if (error == asio::error::operation_aborted || state() == TransportState::closed) return;
-        if (error) {
-          if (is_refused(error)) {
-            ++counters_.refused;  // an earlier datagram met an ICMP port unreachable
-          } else {
-            ++counters_.receive_errors;
-          }
-        } else {
-          receive_datagram(std::span<const std::uint8_t>(receive_buffer_.get(), n));
-        }
-        if (socket_.is_open()) receive();
-      });
+void UdpLink::on_datagram(std::span<const std::uint8_t> bytes,
+                          const asio::ip::udp::endpoint& /*from*/) {
+  (void)receive_datagram(bytes);  // connected: only the vehicle's address reaches the socket
 }
 
 bool UdpLink::send(std::span<const std::uint8_t> frame) {
@@ -143,11 +98,7 @@ bool UdpLink::send(std::span<const std::uint8_t> frame) {
     counters_.bytes_sent += frame.size();
     return true;
   }
-  if (ec == asio::error::would_block || ec == asio::error::no_buffer_space) {
-    ++counters_.dropped_backlog;
-  } else if (!is_refused(ec)) {
-    ++counters_.send_errors;
-  }
+  if (!is_refused(ec)) count_send_error(ec);  // a refusal was counted above
   return false;
 }
 
@@ -193,14 +144,6 @@ std::size_t UdpLink::send_batch(std::span<const std::span<const std::uint8_t>> f
   for (const auto& frame : frames) sent += send(frame) ? 1U : 0U;
 #endif
   return sent;
-}
-
-void UdpLink::close(std::chrono::milliseconds /*linger*/) {
-  if (state() == TransportState::closed) return;
-  set_state(TransportState::closed, "closed");
-  std::error_code ignored;
-  retry_timer_.cancel();
-  socket_.close(ignored);
 }
 
 }  // namespace mocaplink::io

@@ -13,36 +13,12 @@ std::string endpoint_text(const asio::ip::udp::endpoint& e) {
 
 }  // namespace
 
-using detail::is_refused;
-
 UdpInLink::UdpInLink(asio::io_context& loop, std::string host, std::uint16_t port,
                      LinkOptions options)
-    : Link(std::move(options)),
-      loop_(loop),
-      host_(std::move(host)),
-      port_(port),
-      socket_(loop),
-      retry_timer_(loop) {}
-
-UdpInLink::~UdpInLink() {
-  std::error_code ignored;
-  retry_timer_.cancel();
-  socket_.close(ignored);
-}
+    : UdpSocketLink(loop, std::move(options)), host_(std::move(host)), port_(port) {}
 
 std::string UdpInLink::url() const {
   return "udpin://" + detail::host_port_text(host_, port_);
-}
-
-asio::ip::udp::endpoint UdpInLink::local_endpoint() const {
-  std::error_code ec;
-  auto endpoint = socket_.local_endpoint(ec);
-  return ec ? asio::ip::udp::endpoint{} : endpoint;
-}
-
-void UdpInLink::start(FrameHandler on_frame, StateHandler on_state) {
-  set_handlers(std::move(on_frame), std::move(on_state));
-  open();
 }
 
 void UdpInLink::open() {
@@ -53,12 +29,10 @@ void UdpInLink::open() {
   if (!ec) socket_.non_blocking(true, ec);
   if (!ec) socket_.bind(local, ec);
   if (ec) {
-    std::error_code ignored;
-    socket_.close(ignored);
-    schedule_retry("cannot listen on " + url() + ": " + ec.message() +
-                   (ec == asio::error::address_in_use
-                        ? " (another program, or another mocaplink process, owns the port)"
-                        : ""));
+    fail_open("cannot listen on " + url() + ": " + ec.message() +
+              (ec == asio::error::address_in_use
+                   ? " (another program, or another mocaplink process, owns the port)"
+                   : ""));
     return;
   }
   reset_backoff();
@@ -74,35 +48,9 @@ void UdpInLink::open() {
   receive();
 }
 
-void UdpInLink::schedule_retry(const std::string& why) {
-  set_state(TransportState::down, why);
-  retry_timer_.expires_after(next_backoff());
-  retry_timer_.async_wait([this](const std::error_code& error) {
-    if (!error) open();
-  });
-}
-
-void UdpInLink::receive() {
-  socket_.async_receive_from(
-      asio::buffer(receive_buffer_.get(), kReceiveBufferSize), sender_,
-      [this](const std::error_code& error, std::size_t n) {
-        if (error == asio::error::operation_aborted || state() == TransportState::closed) return;
-        if (error) {
-          if (is_refused(error)) {
-            ++counters_.refused;
-          } else {
-            ++counters_.receive_errors;
-          }
-        } else {
-          on_datagram(n);
-        }
-        if (socket_.is_open()) receive();
-      });
-}
-
-void UdpInLink::on_datagram(std::size_t n) {
-  const asio::ip::udp::endpoint from = sender_;  // the handler below may receive again
-  if (receive_datagram(std::span<const std::uint8_t>(receive_buffer_.get(), n)) == 0) return;
+void UdpInLink::on_datagram(std::span<const std::uint8_t> bytes,
+                            const asio::ip::udp::endpoint& from) {
+  if (receive_datagram(bytes) == 0) return;
   if (has_peer_ && from == peer_) return;
   const bool moved = has_peer_;
   const std::string was = moved ? endpoint_text(peer_) : std::string();
@@ -129,22 +77,8 @@ bool UdpInLink::send(std::span<const std::uint8_t> frame) {
     counters_.bytes_sent += frame.size();
     return true;
   }
-  if (ec == asio::error::would_block || ec == asio::error::no_buffer_space) {
-    ++counters_.dropped_backlog;
-  } else if (is_refused(ec)) {
-    ++counters_.refused;
-  } else {
-    ++counters_.send_errors;
-  }
+  count_send_error(ec);
   return false;
-}
-
-void UdpInLink::close(std::chrono::milliseconds /*linger*/) {
-  if (state() == TransportState::closed) return;
-  set_state(TransportState::closed, "closed");
-  std::error_code ignored;
-  retry_timer_.cancel();
-  socket_.close(ignored);
 }
 
 }  // namespace mocaplink::io

@@ -22,56 +22,36 @@
 
 #include <asio/io_context.hpp>
 #include <asio/ip/udp.hpp>
-#include <asio/steady_timer.hpp>
 
 #include "mocaplink/config/net_address.hpp"
-#include "mocaplink/io/link.hpp"
+#include "mocaplink/io/link_udp_socket.hpp"
 
 namespace mocaplink::io {
 
-class UdpLink final : public Link {
+class UdpLink final : public UdpSocketLink {
  public:
   /// `host`: IPv4/IPv6 literal or DNS name; `port` 1..65535. `bind`: the local address to send
   /// from (host: an IP literal, or empty for every interface; port 0 = any free one, for tests).
   UdpLink(asio::io_context& loop, std::string host, std::uint16_t port, LinkOptions options,
           std::optional<config::HostPort> bind = std::nullopt);
-  ~UdpLink() override;
 
-  void start(FrameHandler on_frame, StateHandler on_state) override;
   bool send(std::span<const std::uint8_t> frame) override;
   /// sendmmsg: one system call for up to kMaxBatch frames; whatever the OS refuses in the batch
   /// (an ICMP error, a full buffer) goes through send() again, so it is counted the same way. A
   /// single frame goes through send(), which costs the kernel less than a sendmmsg of one.
   std::size_t send_batch(std::span<const std::span<const std::uint8_t>> frames) override;
   static constexpr std::size_t kMaxBatch = 16;
-  void close(std::chrono::milliseconds linger) override;
-  [[nodiscard]] bool sends_in_place() const noexcept override { return true; }
-  [[nodiscard]] std::size_t backlog_bytes() const noexcept override { return 0; }
   [[nodiscard]] std::string url() const override;
 
-  /// The local endpoint (tests: where the vehicle's replies must go). Unspecified before `up`.
-  [[nodiscard]] asio::ip::udp::endpoint local_endpoint() const;
-
  private:
-  void open();
+  void open() override;
   void connect(const asio::ip::udp::endpoint& remote);
-  void schedule_retry(const std::string& why);
-  void receive();
+  void on_datagram(std::span<const std::uint8_t> bytes,
+                   const asio::ip::udp::endpoint& from) override;
 
-  asio::io_context& loop_;
   std::string host_;
   std::uint16_t port_;
   std::optional<config::HostPort> bind_;
-  asio::ip::udp::socket socket_;
-  asio::steady_timer retry_timer_;
-  // Largest UDP payload: a datagram never holds more, and a smaller buffer would truncate a
-  // datagram packed with several frames. On the heap and not zeroed: the OS makes a page of it
-  // resident only once a datagram reaches it (fresh heap memory), so a vehicle that sends one
-  // frame per datagram costs about a page rather than 64 KiB (peak RSS at 1000 vehicles,
-  // docs/performance.md), and the link object stays small.
-  static constexpr std::size_t kReceiveBufferSize = 65536;
-  std::unique_ptr<std::uint8_t[]> receive_buffer_ =
-      std::make_unique_for_overwrite<std::uint8_t[]>(kReceiveBufferSize);
 };
 
 }  // namespace mocaplink::io
