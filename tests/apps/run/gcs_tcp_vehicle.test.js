@@ -1,0 +1,16 @@
+// Ground stations on a vehicle's link (issue 38), vehicle over TCP (`tcp://` to a PX4-like
+// autopilot serving TCP, as SITL does on 5760): QGroundControl's first seconds through each `gcs`
+// form at once (udpin, tcpin, udp); every frame passes unchanged both ways, mocaplink's own answers
+// stay with it. See gcs_e2e.js.
+'use strict';
+
+const h = require('./harness');
+const { forwardingMatrix, tcpVehicleTransport } = require('./gcs_e2e');
+
+async function main() {
+  const r = await forwardingMatrix(tcpVehicleTransport, 'tcp vehicle');
+  console.log(`ok: tcp vehicle, ${r.gcs.map((g) => `${g.url} ${g.sent.length} sent/${g.received.length} received`).join('; ')}; ` +
+    `${r.odometry} ODOMETRY in ${r.seconds.toFixed(1)} s`);
+}
+
+main().catch(h.fail);
