@@ -316,8 +316,9 @@ const describe = (f) => `msgid ${f.msgid}${f.target ? ` to ${f.target.join('/')}
 function assertVehicleGotExactly(vehicle, g, what) {
   const got = vehicle.received.filter((f) => f.sysid === g.sysid && f.compid === g.compid);
   const want = g.sent.filter((f) => f.target === null || f.target[0] === 0 || f.target[0] === vehicle.sysid);
-  const firstDiff = want.findIndex((f, i) => !got[i] || !got[i].buf.equals(f.buf));
-  assert.ok(firstDiff === -1 && got.length === want.length,
+  let firstDiff = want.findIndex((f, i) => !got[i] || !got[i].buf.equals(f.buf));
+  if (firstDiff === -1 && got.length !== want.length) firstDiff = want.length;
+  assert.ok(firstDiff === -1,
     `${what}: the vehicle received ${got.length} frames from ${g.sysid}/${g.compid}, it sent ` +
     `${want.length}; first difference at ${firstDiff}:\n  sent     ${want[firstDiff] ? describe(want[firstDiff]) : '-'}` +
     `\n  received ${got[firstDiff] ? hex(got[firstDiff].buf) : '-'}`);
@@ -331,9 +332,10 @@ function assertGroundStationGotExactly(vehicle, g, what, { fromSystem = vehicle.
   const others = g.received.filter((f) => f.sysid !== fromSystem && f.sysid !== undefined);
   const want = vehicle.sent.filter((f) => forGroundStation(f.target, g));
   const tail = want.slice(Math.max(0, want.length - got.length));
-  const firstDiff = got.findIndex((f, i) => !tail[i] || !tail[i].buf.equals(f.buf));
+  let firstDiff = got.findIndex((f, i) => !tail[i] || !tail[i].buf.equals(f.buf));
+  if (firstDiff === -1 && got.length > want.length) firstDiff = want.length;
   assert.ok(got.length > 0, `${what}: the ground station received nothing from system ${fromSystem}`);
-  assert.ok(got.length <= want.length && firstDiff === -1,
+  assert.ok(firstDiff === -1,
     `${what}: the ground station's ${got.length} frames from system ${fromSystem} are not the last ` +
     `${got.length} of the ${want.length} the vehicle sent for it; first difference at ${firstDiff}:` +
     `\n  expected ${tail[firstDiff] ? describe(tail[firstDiff]) : '-'}` +
