@@ -12,6 +12,7 @@ async function main() {
   const r = await forwardingMatrix(() => serialVehicleTransport(921600), 'serial vehicle');
   console.log(`ok: serial vehicle, ${r.gcs.map((g) => `${g.url} ${g.sent.length} sent/${g.received.length} received`).join('; ')}; ` +
     `${r.odometry} ODOMETRY in ${r.seconds.toFixed(1)} s`);
+  console.log(JSON.stringify({ gcs: r.after.gcs, link_share: r.after.link_share }));
 }
 
 main().catch(h.fail);

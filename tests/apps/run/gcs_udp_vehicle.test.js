@@ -10,6 +10,7 @@ async function main() {
   const r = await forwardingMatrix(udpVehicleTransport, 'udp vehicle');
   console.log(`ok: udp vehicle, ${r.gcs.map((g) => `${g.url} ${g.sent.length} sent/${g.received.length} received`).join('; ')}; ` +
     `${r.odometry} ODOMETRY in ${r.seconds.toFixed(1)} s`);
+  console.log(JSON.stringify({ gcs: r.after.gcs, link_share: r.after.link_share }));
 }
 
 main().catch(h.fail);
