@@ -12,6 +12,7 @@ const net = require('node:net');
 const path = require('node:path');
 const { MavLinkProtocolV2, common, minimal, standard } = require('node-mavlink');
 const h = require('./harness');
+const { INT32, REAL32, i32, paramValue } = require('./scripted_px4');
 
 const { assert, ID } = h;
 
@@ -23,18 +24,6 @@ const MSG = {
 const CMD = { ARM_DISARM: 400, REQUEST_MESSAGE: 512, SET_MESSAGE_INTERVAL: 511 };
 const MOCAPLINK_COMPID = 197;
 const GCS_COMPID = 190;  // MAV_COMP_ID_MISSIONPLANNER, what QGroundControl sends from
-const INT32 = 6;
-const REAL32 = 9;
-const f32 = (bits) => new Float32Array(new Int32Array([bits]).buffer)[0];
-
-/// A free TCP port on 127.0.0.1 right now.
-async function freeTcpPort() {
-  const server = net.createServer();
-  await new Promise((r) => server.listen(0, '127.0.0.1', r));
-  const { port } = server.address();
-  await new Promise((r) => server.close(r));
-  return port;
-}
 
 /// Every packet `decoder` parses, as {buf (a copy of the raw frame), sysid, compid, msgid, t}.
 function recordFrames(parser, into) {
@@ -111,16 +100,7 @@ function scriptedAutopilot(transport, sysid) {
     transport.send(buf);
   };
   const names = [...s.params.keys()];
-  const value = (name) => {
-    const [v, type] = s.params.get(name);
-    const m = new common.ParamValue();
-    m.paramId = name;
-    m.paramType = type;
-    m.paramValue = type === REAL32 ? v : f32(v);
-    m.paramCount = names.length;
-    m.paramIndex = names.indexOf(name);
-    return m;
-  };
+  const value = (name) => paramValue(name, ...s.params.get(name), names.length, names.indexOf(name));
   recordFrames(transport.decoder.parser, s.received);
   transport.decoder.parser.on('data', (packet) => {
     const id = packet.header.msgid;
@@ -138,7 +118,7 @@ function scriptedAutopilot(transport, sysid) {
       if (!s.params.has(name)) return;
       const [, type] = s.params.get(name);
       s.params.set(name, [type === REAL32 ? m.paramValue
-        : new Int32Array(new Float32Array([m.paramValue]).buffer)[0], type]);
+        : i32(m.paramValue), type]);
       send(value(name));
     } else if (id === ID.COMMAND_LONG && forMe(m.targetSystem)) {
       const accepted = [CMD.ARM_DISARM, CMD.REQUEST_MESSAGE, CMD.SET_MESSAGE_INTERVAL];
@@ -206,7 +186,7 @@ async function groundStationSocket(form) {
     g.send = (buf) => g.socket.send(buf, port, '127.0.0.1');
     g.close = () => g.socket.close();
   } else if (form === 'tcpin') {
-    const port = await freeTcpPort();
+    const port = await h.freeTcpPort();
     g.url = `tcpin://127.0.0.1:${port}`;
     g.open = async () => {
       await h.waitFor(() => new Promise((resolve) => {
@@ -477,9 +457,18 @@ async function forwardingMatrix(makeVehicle, label) {
   }
 }
 
+/// The body of gcs_{udp,tcp,serial}_vehicle.test.js: the matrix on one transport, a summary line.
+function runMatrix(makeVehicle, label) {
+  forwardingMatrix(makeVehicle, label).then((r) => {
+    console.log(`ok: ${label}, ${r.gcs.map((g) => `${g.url} ${g.sent.length} sent/${g.received.length} received`).join('; ')}; ` +
+      `${r.odometry} ODOMETRY in ${r.seconds.toFixed(1)} s`);
+    console.log(JSON.stringify({ gcs: r.after.gcs, link_share: r.after.link_share }));
+  }).catch(h.fail);
+}
+
 module.exports = {
-  forwardingMatrix,
+  forwardingMatrix, runMatrix,
   CMD, GCS_COMPID, MOCAPLINK_COMPID, MSG, SIGNING_KEY, assertGroundStationGotExactly,
-  assertVehicleGotExactly, forGroundStation, freeTcpPort, groundStationSocket, qgcSession,
+  assertVehicleGotExactly, forGroundStation, groundStationSocket, qgcSession,
   scriptedAutopilot, serialVehicleTransport, tcpVehicleTransport, udpVehicleTransport,
 };

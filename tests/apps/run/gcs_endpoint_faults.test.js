@@ -68,7 +68,7 @@ async function tcpConnect(port) {
 async function main() {
   const v = await g38.udpVehicleTransport();
   const udpinPort = await h.freeUdpPort();
-  const tcpinPort = await g38.freeTcpPort();
+  const tcpinPort = await h.freeTcpPort();
   const udpin = `udpin://127.0.0.1:${udpinPort}`;
   const tcpin = `tcpin://127.0.0.1:${tcpinPort}`;
   const run = h.mocaplink(['run', '--source', 'sim://?bodies=1&rate_hz=100', '--http', '127.0.0.1:0',

@@ -5,14 +5,6 @@
 // See gcs_e2e.js.
 'use strict';
 
-const h = require('./harness');
-const { forwardingMatrix, serialVehicleTransport } = require('./gcs_e2e');
+const { runMatrix, serialVehicleTransport } = require('./gcs_e2e');
 
-async function main() {
-  const r = await forwardingMatrix(() => serialVehicleTransport(921600), 'serial vehicle');
-  console.log(`ok: serial vehicle, ${r.gcs.map((g) => `${g.url} ${g.sent.length} sent/${g.received.length} received`).join('; ')}; ` +
-    `${r.odometry} ODOMETRY in ${r.seconds.toFixed(1)} s`);
-  console.log(JSON.stringify({ gcs: r.after.gcs, link_share: r.after.link_share }));
-}
-
-main().catch(h.fail);
+runMatrix(() => serialVehicleTransport(921600), 'serial vehicle');

@@ -4,14 +4,6 @@
 // stay with it. See gcs_e2e.js.
 'use strict';
 
-const h = require('./harness');
-const { forwardingMatrix, tcpVehicleTransport } = require('./gcs_e2e');
+const { runMatrix, tcpVehicleTransport } = require('./gcs_e2e');
 
-async function main() {
-  const r = await forwardingMatrix(tcpVehicleTransport, 'tcp vehicle');
-  console.log(`ok: tcp vehicle, ${r.gcs.map((g) => `${g.url} ${g.sent.length} sent/${g.received.length} received`).join('; ')}; ` +
-    `${r.odometry} ODOMETRY in ${r.seconds.toFixed(1)} s`);
-  console.log(JSON.stringify({ gcs: r.after.gcs, link_share: r.after.link_share }));
-}
-
-main().catch(h.fail);
+runMatrix(tcpVehicleTransport, 'tcp vehicle');

@@ -6,6 +6,7 @@
 const assert = require('node:assert/strict');
 const { spawn } = require('node:child_process');
 const dgram = require('node:dgram');
+const net = require('node:net');
 const fs = require('node:fs');
 const os = require('node:os');
 const path = require('node:path');
@@ -141,6 +142,15 @@ async function freeUdpPort() {
   return port;
 }
 
+/// A TCP port free on 127.0.0.1 right now (listened on, then closed).
+async function freeTcpPort() {
+  const server = net.createServer();
+  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const { port } = server.address();
+  await new Promise((resolve) => server.close(resolve));
+  return port;
+}
+
 /// Waits for `proc` to print a line matching `re` on stderr; returns the match.
 async function waitForLog(proc, re, timeoutMs = 10000) {
   let m = null;
@@ -182,6 +192,6 @@ async function stop(proc) {
 }
 
 module.exports = {
-  assert, BIN, dashboardApi, Decoder, fail, freeUdpPort, ID, UdpVehicle, decode, mocaplink, sleep, start, stop, tempDir, writeConfig, waitFor,
+  assert, BIN, dashboardApi, Decoder, fail, freeTcpPort, freeUdpPort, ID, UdpVehicle, decode, mocaplink, sleep, start, stop, tempDir, writeConfig, waitFor,
   waitForLog,
 };

@@ -11,21 +11,12 @@
 // JSON document, the link not opened a second time.
 'use strict';
 
-const net = require('node:net');
 const fs = require('node:fs');
 const path = require('node:path');
 const h = require('./harness');
 const { INT32, i32, scriptedPx4, OnePeerVehicle } = require('./scripted_px4');
 
 const { assert } = h;
-
-async function freeTcpPort() {
-  const server = net.createServer();
-  await new Promise((r) => server.listen(0, '127.0.0.1', r));
-  const { port } = server.address();
-  await new Promise((r) => server.close(r));
-  return port;
-}
 
 /// A configuration with one PX4 on `link`, its dashboard on `httpPort` (0: any).
 function config(dir, name, link, httpPort = 0) {
@@ -107,7 +98,7 @@ async function listening(dir) {
     await sequence(px4, vehicle, file, 'udpin');
 
     // `vehicle setup` while `run` owns the link: through the dashboard.
-    const httpPort = await freeTcpPort();
+    const httpPort = await h.freeTcpPort();
     const owned = config(dir, 'owned.toml', `udpin://127.0.0.1:${local}`, httpPort);
     px4.params.set('EKF2_EV_CTRL', [0, INT32]);  // undone by a ground station meanwhile
     const run = h.mocaplink(['run', '--config', owned]);

@@ -22,6 +22,17 @@ const REAL32 = 9;
 const f32 = (bits) => new Float32Array(new Int32Array([bits]).buffer)[0];
 const i32 = (float) => new Int32Array(new Float32Array([float]).buffer)[0];
 
+/// PARAM_VALUE `name` = `value` of `type` as PX4 sends it (an INT32's bits in the float).
+function paramValue(name, value, type, count, index) {
+  const m = new common.ParamValue();
+  m.paramId = name;
+  m.paramType = type;
+  m.paramValue = type === REAL32 ? value : f32(value);
+  m.paramCount = count;
+  m.paramIndex = index;
+  return m;
+}
+
 function scriptedPx4(vehicle, sysid) {
   const s = {
     params: new Map([
@@ -32,16 +43,7 @@ function scriptedPx4(vehicle, sysid) {
   };
   let seq = 0;
   const send = (m) => vehicle.send(new MavLinkProtocolV2(sysid, 1).serialize(m, seq++ & 255));
-  const value = (name) => {
-    const [v, type] = s.params.get(name);
-    const m = new common.ParamValue();
-    m.paramId = name;
-    m.paramType = type;
-    m.paramValue = type === REAL32 ? v : f32(v);
-    m.paramCount = 1000;
-    m.paramIndex = 42;
-    return m;
-  };
+  const value = (name) => paramValue(name, ...s.params.get(name), 1000, 42);
   vehicle.decoder.parser.on('data', (packet) => {
     const m = h.decode(packet);
     const id = packet.header.msgid;
@@ -114,4 +116,4 @@ class OnePeerVehicle {
   ofId(msgid) { return this.packets.filter((p) => p.packet.header.msgid === msgid); }
 }
 
-module.exports = { INT32, REAL32, f32, i32, scriptedPx4, OnePeerVehicle, MavLinkProtocolV2, ID };
+module.exports = { INT32, REAL32, f32, i32, paramValue, scriptedPx4, OnePeerVehicle, MavLinkProtocolV2, ID };
