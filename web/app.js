@@ -325,9 +325,9 @@ function renderGroundStations(card, v) {
       (drops ? ` · ${int(drops)} dropped` : '');
   }).join('\n');
   const s = v.link_share;
-  const budget = s.capacity_bps === null ? 'budget unknown' : `${int(Math.round(s.capacity_bps))} B/s budget`;
-  $('.v-share', r).textContent = `${budget} · mocaplink ${int(Math.round(s.own_bps))} B/s · ground stations ` +
-    `${int(Math.round(s.forwarded_bps))} B/s` + (s.forwarded_dropped ? ` · ${int(s.forwarded_dropped)} of theirs dropped` : '') +
+  const budget = s.capacity_bytes_per_s === null ? 'budget unknown' : `${int(Math.round(s.capacity_bytes_per_s))} B/s budget`;
+  $('.v-share', r).textContent = `${budget} · mocaplink ${int(Math.round(s.own_bytes_per_s))} B/s · ground stations ` +
+    `${int(Math.round(s.forwarded_bytes_per_s))} B/s` + (s.forwarded_dropped ? ` · ${int(s.forwarded_dropped)} of theirs dropped` : '') +
     (s.queued_bytes ? ` · ${int(s.queued_bytes)} B waiting` : '');
 }
 

@@ -96,7 +96,10 @@ void GroundStations::from_vehicle(std::size_t slot, const mavlink::FrameView& fr
   targets_.clear();
   router_.from_vehicle(slot, route_of(frame), targets_);
   for (const std::size_t e : targets_) {
-    if (endpoints_[e].link) (void)endpoints_[e].link->send(frame.bytes);
+    // An endpoint no ground station has reached yet (udpin nobody spoke to, tcpin without a
+    // connection) is skipped, not counted as a drop: nobody is missing those frames.
+    io::Link* link = endpoints_[e].link.get();
+    if (link != nullptr && link->state() == io::TransportState::up) (void)link->send(frame.bytes);
   }
 }
 
@@ -159,8 +162,8 @@ void GroundStations::sample(std::size_t slot, const io::Link& link, core::HostTi
   }
   const double seconds = core::to_seconds(now - m.at);
   if (seconds < 1.0) return;
-  m.own_bps = static_cast<double>(own - m.own_bytes) / seconds;
-  m.forwarded_bps = static_cast<double>(c.forwarded_bytes - m.forwarded_bytes) / seconds;
+  m.own_bytes_per_s = static_cast<double>(own - m.own_bytes) / seconds;
+  m.forwarded_bytes_per_s = static_cast<double>(c.forwarded_bytes - m.forwarded_bytes) / seconds;
   m.at = now;
   m.own_bytes = own;
   m.forwarded_bytes = c.forwarded_bytes;
@@ -169,10 +172,10 @@ void GroundStations::sample(std::size_t slot, const io::Link& link, core::HostTi
 web::LinkShareView GroundStations::share(std::size_t slot, const io::Link& link) const {
   const io::LinkCounters c = link.counters();
   web::LinkShareView v;
-  v.capacity_bps = link.capacity_bytes_per_second();
+  v.capacity_bytes_per_s = link.capacity_bytes_per_second();
   if (slot < meters_.size()) {
-    v.own_bps = meters_[slot].own_bps;
-    v.forwarded_bps = meters_[slot].forwarded_bps;
+    v.own_bytes_per_s = meters_[slot].own_bytes_per_s;
+    v.forwarded_bytes_per_s = meters_[slot].forwarded_bytes_per_s;
   }
   v.forwarded = c.forwarded_sent;
   v.forwarded_dropped = c.forwarded_dropped;

@@ -77,8 +77,8 @@ class GroundStations {
     core::HostTime at{};
     std::uint64_t own_bytes = 0;
     std::uint64_t forwarded_bytes = 0;
-    double own_bps = 0.0;
-    double forwarded_bps = 0.0;
+    double own_bytes_per_s = 0.0;
+    double forwarded_bytes_per_s = 0.0;
   };
   std::vector<Meter> meters_;         // by vehicle slot
   std::vector<std::size_t> slots_;    // scratch: a frame's vehicles

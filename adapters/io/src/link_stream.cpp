@@ -90,7 +90,7 @@ bool StreamLink::send_forwarded(std::span<const std::uint8_t> frame) {
     ++counters_.forwarded_dropped;
     return false;
   }
-  if (!gate_.push(frame)) {
+  if (!gate_.push(frame, host_now())) {
     ++counters_.forwarded_dropped;
     return false;
   }
@@ -111,12 +111,17 @@ void StreamLink::pump_forwarded() {
   // What the OS still holds (a TCP send buffer can hold seconds of a slow Wi-Fi's traffic, a
   // tty's buffer a few KiB): a forwarded frame is added only when at most one frame waits there,
   // so that a pose written next is not queued behind ground-station traffic.
-  if (const auto unsent = unsent_bytes(); unsent && *unsent > mavlink::kMaxFrameSize) {
-    again_in(kUnsentPoll);
-    return;
+  if (const auto unsent = unsent_bytes()) {
+    if (*unsent > mavlink::kMaxFrameSize) {
+      again_in(kUnsentPoll);
+      return;
+    }
+    gate_.observe_unsent(*unsent, now);  // the OS's word over the model's
   }
   core::HostTime retry_at{};
+  const std::uint64_t stale_before = gate_.counters().dropped_stale;
   auto frame = gate_.next(now, retry_at);
+  counters_.forwarded_dropped += gate_.counters().dropped_stale - stale_before;
   if (!frame) {
     if (!gate_.empty()) again_in(retry_at - now);
     return;

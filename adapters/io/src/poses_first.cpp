@@ -13,7 +13,14 @@ std::chrono::nanoseconds PosesFirst::air_time(std::size_t bytes) const {
 }
 
 void PosesFirst::occupy(std::size_t bytes, core::HostTime now) {
-  busy_until_ = std::max(busy_until_, now) + air_time(bytes);
+  // At most a full queue's air time ahead: a link that takes bytes faster than its nominal speed
+  // (a pty, USB serial) would otherwise let the model run ahead of the wire without bound.
+  busy_until_ = std::min(std::max(busy_until_, now) + air_time(bytes),
+                         now + air_time(options_.max_queue_bytes));
+}
+
+void PosesFirst::observe_unsent(std::size_t bytes, core::HostTime now) {
+  if (options_.bytes_per_second > 0.0) busy_until_ = now + air_time(bytes);
 }
 
 void PosesFirst::on_own_write(std::size_t bytes, core::HostTime now) {
@@ -22,12 +29,12 @@ void PosesFirst::on_own_write(std::size_t bytes, core::HostTime now) {
   occupy(bytes, now);
 }
 
-bool PosesFirst::push(std::span<const std::uint8_t> frame) {
+bool PosesFirst::push(std::span<const std::uint8_t> frame, core::HostTime now) {
   if (queued_bytes_ + frame.size() > options_.max_queue_bytes) {
     ++counters_.dropped_full;
     return false;
   }
-  queue_.emplace_back(frame.begin(), frame.end());
+  queue_.push_back(Waiting{std::vector<std::uint8_t>(frame.begin(), frame.end()), now});
   queued_bytes_ += frame.size();
   ++counters_.queued;
   return true;
@@ -35,8 +42,13 @@ bool PosesFirst::push(std::span<const std::uint8_t> frame) {
 
 std::optional<std::vector<std::uint8_t>> PosesFirst::next(core::HostTime now,
                                                           core::HostTime& retry_at) {
+  while (!queue_.empty() && now - queue_.front().since > options_.max_age) {
+    queued_bytes_ -= queue_.front().frame.size();
+    queue_.pop_front();
+    ++counters_.dropped_stale;
+  }
   if (queue_.empty()) return std::nullopt;
-  const std::vector<std::uint8_t>& frame = queue_.front();
+  const std::vector<std::uint8_t>& frame = queue_.front().frame;
   if (options_.bytes_per_second > 0.0 && pose_period_.count() > 0 && last_own_) {
     const core::HostTime due = *last_own_ + pose_period_ - pose_period_ / 10;
     const bool poses_flowing = now - *last_own_ < pose_period_ * 3 / 2;
@@ -47,7 +59,7 @@ std::optional<std::vector<std::uint8_t>> PosesFirst::next(core::HostTime now,
       return std::nullopt;
     }
   }
-  std::vector<std::uint8_t> out = std::move(queue_.front());
+  std::vector<std::uint8_t> out = std::move(queue_.front().frame);
   queue_.pop_front();
   queued_bytes_ -= out.size();
   ++counters_.handed_out;

@@ -126,9 +126,9 @@ void to_json(nlohmann::json& j, const GcsEndpointView& e) {
 }
 
 void to_json(nlohmann::json& j, const LinkShareView& s) {
-  j = nlohmann::json{{"capacity_bps", optional_json(s.capacity_bps)},
-                     {"own_bps", s.own_bps},
-                     {"forwarded_bps", s.forwarded_bps},
+  j = nlohmann::json{{"capacity_bytes_per_s", optional_json(s.capacity_bytes_per_s)},
+                     {"own_bytes_per_s", s.own_bytes_per_s},
+                     {"forwarded_bytes_per_s", s.forwarded_bytes_per_s},
                      {"forwarded", s.forwarded},
                      {"forwarded_dropped", s.forwarded_dropped},
                      {"queued_bytes", s.queued_bytes}};

@@ -443,11 +443,11 @@ async function forwardingMatrix(makeVehicle, label) {
     }
     const share = after.link_share;
     const forwarded = gcs.reduce((n, g) => n + g.sent.length, 0);
-    if (v.kind === 'serial') assert.ok(typeof share.capacity_bps === 'number' && share.capacity_bps > 0, JSON.stringify(share));
-    else assert.equal(share.capacity_bps, null, JSON.stringify(share));
+    if (v.kind === 'serial') assert.ok(typeof share.capacity_bytes_per_s === 'number' && share.capacity_bytes_per_s > 0, JSON.stringify(share));
+    else assert.equal(share.capacity_bytes_per_s, null, JSON.stringify(share));
     assert.equal(share.forwarded, forwarded, `${label}: link_share.forwarded (the ground stations sent ${forwarded}) ${JSON.stringify(share)}`);
     assert.equal(share.forwarded_dropped, 0, JSON.stringify(share));
-    for (const key of ['own_bps', 'forwarded_bps', 'queued_bytes']) assert.equal(typeof share[key], 'number', `${key}: ${JSON.stringify(share)}`);
+    for (const key of ['own_bytes_per_s', 'forwarded_bytes_per_s', 'queued_bytes']) assert.equal(typeof share[key], 'number', `${key}: ${JSON.stringify(share)}`);
     return { gcs, autopilot, odometry, seconds, after };
   } finally {
     if (autopilot) autopilot.stop();

@@ -110,7 +110,7 @@ async function main() {
     // What was forwarded onto this vehicle's link: the frames for it.
     const forwarded = g.sent.filter((f) => !f.target || f.target[0] === 0 || f.target[0] === vehicles[i].sysid).length;
     assert.equal(v.link_share.forwarded, forwarded, `${what}: link_share.forwarded ${JSON.stringify(v.link_share)}`);
-    assert.equal(v.link_share.capacity_bps, null, JSON.stringify(v.link_share));
+    assert.equal(v.link_share.capacity_bytes_per_s, null, JSON.stringify(v.link_share));
   }
   assert.equal(stopped[0].gcs[0].frames_to_gcs, stopped[1].gcs[0].frames_to_gcs, 'one endpoint, one count');
   const connected = run.stderr.match(new RegExp(`ground station 255/190 on ${escaped} connected`, 'g')) || [];

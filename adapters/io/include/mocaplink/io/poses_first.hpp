@@ -11,6 +11,12 @@
 //     write, less a tenth of a period for the mocap's jitter. When no own frame has been written
 //     for 1.5 periods (no mocap frames, the vehicle paused), nothing is due and the queue flows.
 // A link of unknown speed (TCP) gets only the first rule.
+// The model never runs ahead of reality for long: what the OS says it still holds (TIOCOUTQ)
+// replaces the modelled backlog whenever the link can ask, and the model holds at most
+// max_queue_bytes of air time (a pty or a USB serial port takes bytes faster than its nominal
+// baud). A forwarded frame older than max_age is dropped and counted, never sent: a ground
+// station repeats what it still wants, and a command delivered seconds late (an ARM) must not
+// arrive at all.
 // Pure: time is passed in. Not thread-safe (one owner, the link's loop thread).
 #pragma once
 
@@ -31,11 +37,13 @@ class PosesFirst {
   struct Options {
     double bytes_per_second = 0.0;  ///< the link's speed; 0: unknown (no air-time rule)
     std::size_t max_queue_bytes = 4096;
+    std::chrono::nanoseconds max_age = std::chrono::seconds(1);
   };
   struct Counters {
-    std::uint64_t queued = 0;        ///< forwarded frames accepted into the queue
-    std::uint64_t handed_out = 0;    ///< given to the link to write
-    std::uint64_t dropped_full = 0;  ///< refused: the queue was full
+    std::uint64_t queued = 0;         ///< forwarded frames accepted into the queue
+    std::uint64_t handed_out = 0;     ///< given to the link to write
+    std::uint64_t dropped_full = 0;   ///< refused: the queue was full
+    std::uint64_t dropped_stale = 0;  ///< waited longer than max_age: dropped, never sent
     std::uint64_t bytes_handed_out = 0;
     std::uint64_t own_bytes = 0;  ///< mocaplink's own bytes written (the poses' share)
   };
@@ -46,8 +54,11 @@ class PosesFirst {
   void set_pose_period(std::chrono::nanoseconds period) { pose_period_ = period; }
   /// One of mocaplink's own frames, `bytes` long, was written at `now`.
   void on_own_write(std::size_t bytes, core::HostTime now);
-  /// A forwarded frame waits its turn; false when the queue is full (dropped, counted).
-  bool push(std::span<const std::uint8_t> frame);
+  /// A forwarded frame, arrived at `now`, waits its turn; false when the queue is full (dropped,
+  /// counted).
+  bool push(std::span<const std::uint8_t> frame, core::HostTime now);
+  /// The OS still holds `bytes` of what was written (TIOCOUTQ): the UART is busy that long.
+  void observe_unsent(std::size_t bytes, core::HostTime now);
   /// The link's own queue is empty at `now`: the next forwarded frame to write, or nullopt —
   /// then, if frames wait, `retry_at` says when to ask again. The frame is taken out of the queue.
   [[nodiscard]] std::optional<std::vector<std::uint8_t>> next(core::HostTime now,
@@ -66,7 +77,11 @@ class PosesFirst {
   std::chrono::nanoseconds pose_period_{0};
   std::optional<core::HostTime> last_own_;
   core::HostTime busy_until_{};  // the modelled UART's last byte leaves then
-  std::deque<std::vector<std::uint8_t>> queue_;
+  struct Waiting {
+    std::vector<std::uint8_t> frame;
+    core::HostTime since;
+  };
+  std::deque<Waiting> queue_;
   std::size_t queued_bytes_ = 0;
   Counters counters_;
 };

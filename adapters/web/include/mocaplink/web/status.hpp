@@ -194,12 +194,13 @@ struct GcsEndpointView {
 /// The vehicle's link as shared by mocaplink's own traffic and its ground stations' (poses
 /// first). Rates are bytes per second toward the vehicle over the last second or so.
 struct LinkShareView {
-  std::optional<double> capacity_bps{};  ///< what the link carries (serial: baud / 10); else null
-  double own_bps = 0.0;                  ///< mocaplink's own frames (poses, heartbeat, ...)
-  double forwarded_bps = 0.0;            ///< ground stations' frames
-  std::uint64_t forwarded = 0;           ///< ground-station frames written, cumulative
-  std::uint64_t forwarded_dropped = 0;   ///< ground-station frames dropped, cumulative
-  std::size_t queued_bytes = 0;          ///< ground-station bytes waiting for their turn
+  std::optional<double>
+      capacity_bytes_per_s{};           ///< what the link carries (serial: baud / 10); else null
+  double own_bytes_per_s = 0.0;         ///< mocaplink's own frames (poses, heartbeat, ...)
+  double forwarded_bytes_per_s = 0.0;   ///< ground stations' frames
+  std::uint64_t forwarded = 0;          ///< ground-station frames written, cumulative
+  std::uint64_t forwarded_dropped = 0;  ///< ground-station frames dropped, cumulative
+  std::size_t queued_bytes = 0;         ///< ground-station bytes waiting for their turn
 };
 
 struct VehicleView {
