@@ -439,7 +439,16 @@ std::optional<int> setup_through_daemon(const config::Config& cfg, const config:
                vehicle.spec.name.c_str(), options.apply ? " and applying" : "",
                client.address().c_str());
   DaemonPeer peer(client, vehicle.spec.name);
-  return SetupFlow(peer, options).run();
+  try {
+    return SetupFlow(peer, options).run();
+  } catch (const nlohmann::json::exception& e) {
+    // Another program on that port, or another version's answer: said, never a crash.
+    std::fprintf(stderr,
+                 "mocaplink vehicle setup: the dashboard at %s answered GET %s with a vehicle "
+                 "this version cannot read (%s)\n",
+                 client.address().c_str(), path.c_str(), e.what());
+    return 2;
+  }
 }
 
 int run_vehicle_setup(const Options& options, const sources::SourceRegistry& sources) {

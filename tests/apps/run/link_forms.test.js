@@ -144,11 +144,32 @@ async function control(dir) {
   }
 }
 
+async function strangerOnTheDashboardPort(dir) {
+  // Another program answers at the configuration's [http] listen with something that is not a
+  // vehicle: said, exit 2, never a crash, and the link is not opened behind its back.
+  const http = require('node:http');
+  const server = http.createServer((req, res) => {
+    res.writeHead(200, { 'Content-Type': 'application/json' });
+    res.end(JSON.stringify({ setup: { state: 7 } }));
+  });
+  await new Promise((r) => server.listen(0, '127.0.0.1', r));
+  try {
+    const file = config(dir, 'stranger.toml', 'udpin://127.0.0.1:9', server.address().port);
+    const out = await setup(file, ['--json'], 2);
+    assert.equal(out.code, 2, out.stderr);
+    assert.match(out.stderr, /answered GET \/api\/vehicles\/quad with a vehicle this version cannot read/);
+    assert.equal(out.stdout, '');
+  } finally {
+    server.close();
+  }
+}
+
 async function main() {
   const dir = h.tempDir('link-forms');
   await bound(dir);
   await listening(dir);
   await control(dir);
+  await strangerOnTheDashboardPort(dir);
 }
 
 main().catch(h.fail);
