@@ -291,13 +291,17 @@ class LinkPeer final : public SetupPeer {
     // 1.14 SITL: a second process on the same boot heard nothing), unless every process speaks
     // from the same address (docs/config.md "Links").
     const bool plain_udp = vehicle_.link.kind == config::LinkKind::udp && !vehicle_.link.bind;
+    const bool listening = vehicle_.link.kind == config::LinkKind::udpin;
     return "no HEARTBEAT from the vehicle within " + seconds.str() + " s on " + url +
            (link_detail_.empty() ? "" : " (link " + link_detail_ + ")") +
-           (plain_udp ? "; a PX4 answers only the first address that spoke to its UDP port since "
-                        "it booted: if another program or mocaplink process did, restart the "
-                        "vehicle, or give the link a fixed local port (?bind=) or listen with "
-                        "udpin:// so that every mocaplink process is heard (docs/config.md)"
-                      : "");
+           (plain_udp   ? "; a PX4 answers only the first address that spoke to its UDP port since "
+                          "it booted: if another program or mocaplink process did, restart the "
+                          "vehicle, or give the link a fixed local port (?bind=) or listen with "
+                          "udpin:// so that every mocaplink process is heard (docs/config.md)"
+            : listening ? "; nothing spoke to it here: a PX4 sends its onboard link elsewhere once "
+                          "another program has spoken to its port since it booted (restart the "
+                          "vehicle; docs/config.md)"
+                        : "");
   }
 
  private:
