@@ -16,7 +16,10 @@
 //             over and over;
 //   upload    a ground station uploading a 200-item mission over and over (MISSION_COUNT,
 //             MISSION_REQUEST_INT / MISSION_ITEM_INT, MISSION_ACK) — the heavy direction toward
-//             the vehicle.
+//             the vehicle;
+//   direct-download, direct-upload   the reference for the ground station's traffic: the same
+//             ground station with the link to itself (direct.js forwards UDP to the pty as is; no
+//             mocaplink, no poses), as if it had the radio alone.
 // Each run warms up (--warmup, 5 s: the vehicle's set-up reads, the ground station's connection)
 // and then measures for --seconds (20):
 //   * pose latency, per ODOMETRY the vehicle receives: from when mocaplink wrote it (the relay
@@ -35,10 +38,12 @@
 // Medians over --runs (3) repetitions; a markdown table on stdout, everything as JSON (--json FILE,
 // default stdout's tail).
 // Conditions that need `gcs` are skipped (and said so) when `mocaplink check` refuses the key.
+// The direct conditions give the ground station's own figures a reference: what fraction of its
+// traffic it keeps when it shares the link with the poses.
 //
 // Usage: node bench/gcs_link/run_gcs_link.js --mocaplink BIN --relay BIN [--seconds 20]
 //   [--runs 3] [--warmup 5] [--bauds 57600,921600] [--rate 57600:15,921600:50]
-//   [--conditions baseline,idle,download,upload] [--json FILE]
+//   [--conditions baseline,idle,download,upload,direct-download,direct-upload] [--json FILE]
 // Build: cmake --build --preset ci --target mocaplink gcs_uart_relay (build/ci/mocaplink,
 // build/ci/bench/gcs_uart_relay). Takes ~(seconds + 8) × conditions × runs × bauds seconds.
 'use strict';
@@ -53,7 +58,8 @@ const readline = require('node:readline');
 // --- Options. ------------------------------------------------------------------------------------
 function parseArgs(argv) {
   const o = { seconds: 20, runs: 3, warmup: 5, bauds: [57600, 921600],
-              rate: { 57600: 15, 921600: 50 }, conditions: ['baseline', 'idle', 'download', 'upload'],
+              rate: { 57600: 15, 921600: 50 }, conditions: ['baseline', 'idle', 'download', 'upload', 'direct-download',
+                           'direct-upload'],
               json: null, mocaplink: null, relay: null };
   for (let i = 0; i < argv.length; i += 2) {
     const [key, value] = [argv[i], argv[i + 1]];
@@ -185,20 +191,30 @@ async function measure(o, baud, condition, dir) {
     await waitFor(() => vehicle.messages.some((m) => m.cmd === 'ready'), 5000, 'vehicle');
 
     const gcsPort = condition === 'baseline' ? null : await freePort('udp');
-    const httpPort = await freePort('tcp');
-    const config = path.join(dir, `${baud}-${condition}.toml`);
-    writeConfig(config, { tty: relayOut.a, baud, rateHz: o.rate[baud], gcsPort, httpPort });
-    run = spawn(o.mocaplink, ['run', '--config', config], {
-      env: { ...process.env, MOCAPLINK_STATE_DIR: path.join(dir, `state-${baud}-${condition}`) },
-      stdio: ['ignore', 'ignore', 'pipe'] });
+    const direct = condition.startsWith('direct-');
+    const task = condition.replace('direct-', '');
     let runLog = '';
-    run.stderr.on('data', (d) => { runLog += d; });
-    const runExit = new Promise((r) => run.on('exit', (code, signal) => r({ code, signal })));
-    await waitFor(() => relayOut.odometry.size > 0, 15000, `poses on the link\n${runLog}`);
+    let runExit = null;
+    let httpPort = null;
+    if (direct) {
+      const forwarder = forkChild('direct.js', [relayOut.a, String(gcsPort)]);
+      started.push(forwarder);
+      await waitFor(() => forwarder.messages.some((m) => m.cmd === 'ready'), 5000, 'direct.js');
+    } else {
+      httpPort = await freePort('tcp');
+      const config = path.join(dir, `${baud}-${condition}.toml`);
+      writeConfig(config, { tty: relayOut.a, baud, rateHz: o.rate[baud], gcsPort, httpPort });
+      run = spawn(o.mocaplink, ['run', '--config', config], {
+        env: { ...process.env, MOCAPLINK_STATE_DIR: path.join(dir, `state-${baud}-${condition}`) },
+        stdio: ['ignore', 'ignore', 'pipe'] });
+      run.stderr.on('data', (d) => { runLog += d; });
+      runExit = new Promise((r) => run.on('exit', (code, signal) => r({ code, signal })));
+      await waitFor(() => relayOut.odometry.size > 0, 15000, `poses on the link\n${runLog}`);
+    }
 
     let gcs = null;
-    if (condition === 'download' || condition === 'upload') {
-      gcs = forkChild('gcs.js', [String(gcsPort), condition]);
+    if (task === 'download' || task === 'upload') {
+      gcs = forkChild('gcs.js', [String(gcsPort), task]);
       started.push(gcs);
       await waitFor(() => gcs.messages.some((m) => m.cmd === 'ready'), 15000,
         `the ground station to hear the vehicle through mocaplink\n${runLog}`);
@@ -213,15 +229,18 @@ async function measure(o, baud, condition, dir) {
     const v = await vehicle.ask('report', 'report');
     const g = gcs ? await gcs.ask('report', 'report') : null;
     let status = null;
-    try {
-      const response = await fetch(`http://127.0.0.1:${httpPort}/api/status`);
-      status = await response.json();
-    } catch (error) {
-      status = { error: String(error) };
+    let exit = null;
+    if (run) {
+      try {
+        const response = await fetch(`http://127.0.0.1:${httpPort}/api/status`);
+        status = await response.json();
+      } catch (error) {
+        status = { error: String(error) };
+      }
+      run.kill('SIGTERM');
+      exit = await runExit;
+      run = null;
     }
-    run.kill('SIGTERM');
-    const exit = await runExit;
-    run = null;
     await sleep(300);  // the relay's last O lines
     return summarize(o, baud, condition, { v, g, status, relayOut, markNs, endNs, exit, runLog });
   } finally {
@@ -365,6 +384,18 @@ function medians(results) {
     m.ratio_write_p50 = median(ratios.write_p50);
     m.ratio_write_p99 = median(ratios.write_p99);
     m.ratio_pose_hz = median(ratios.pose_hz);
+    // The ground station's figures against the same repetition's direct-<task> (link to itself).
+    const vsDirect = { to_vehicle_fps: [], to_gcs_fps: [], param_download_s: [], mission_upload_s: [] };
+    for (const r of results.filter((x) => x.baud === m.baud && x.condition === m.condition)) {
+      const ref = results.find((x) => x.baud === r.baud && x.condition === `direct-${r.condition}` &&
+                                      x.repetition === r.repetition);
+      if (!ref) continue;
+      for (const k of Object.keys(vsDirect)) {
+        const [a, b] = [METRICS[k](r), METRICS[k](ref)];
+        if (a !== null && b) vsDirect[k].push(a / b);
+      }
+    }
+    m.vs_direct = Object.fromEntries(Object.entries(vsDirect).map(([k, v]) => [k, median(v)]));
   }
   return out;
 }
@@ -396,7 +427,7 @@ async function main() {
   const probe = gcsSupported(o.mocaplink, dir);
   let conditions = o.conditions;
   if (!probe.ok) {
-    conditions = conditions.filter((c) => c === 'baseline');
+    conditions = conditions.filter((c) => c === 'baseline' || c.startsWith('direct-'));
     console.error(`note: this mocaplink refuses the gcs key; only the baseline runs.\n${probe.output}`);
   }
   const results = [];
