@@ -31,8 +31,10 @@
 //   * ground-station traffic each way: frames/s and bytes/s the ground station sent and the
 //     vehicle received from system 255, and the vehicle's frames/s and bytes/s the ground station
 //     received; the difference toward the vehicle is what was lost (dropped by mocaplink: poses
-//     first), and what mocaplink itself reports dropped (any counter under a key naming `gcs` in
-//     /api/status's vehicle whose key says `drop`);
+//     first; ± the few frames in flight at the window's edges), and what mocaplink itself
+//     reports dropped in the window (the sum of the counters in /api/status's vehicle whose key
+//     says `drop`, under a key naming `gcs` or `forward`, at the end minus at the start; all such
+//     counters are in the JSON);
 //   * completed parameter downloads, log listings and mission uploads, with their median time;
 //   * the emulated line's use toward the vehicle and how long the relay's queue was full.
 // Medians over --runs (3) repetitions; a markdown table on stdout, everything as JSON (--json FILE,
@@ -147,7 +149,7 @@ function gcsCounters(value, at = '', inside = false, out = {}) {
     if (inside) out[at] = value;
   } else if (typeof value === 'object') {
     for (const [k, v] of Object.entries(value)) {
-      gcsCounters(v, at ? `${at}.${k}` : k, inside || /gcs|ground/i.test(k), out);
+      gcsCounters(v, at ? `${at}.${k}` : k, inside || /gcs|ground|forward/i.test(k), out);
     }
   }
   return out;
@@ -224,6 +226,7 @@ async function measure(o, baud, condition, dir) {
     await vehicle.ask('mark', 'marked');
     if (gcs) await gcs.ask('mark', 'marked');
     const markNs = nowNs();
+    const statusAtMark = run ? await getStatus(httpPort) : null;
     await sleep(o.seconds * 1000);
     const endNs = nowNs();
     const v = await vehicle.ask('report', 'report');
@@ -231,18 +234,14 @@ async function measure(o, baud, condition, dir) {
     let status = null;
     let exit = null;
     if (run) {
-      try {
-        const response = await fetch(`http://127.0.0.1:${httpPort}/api/status`);
-        status = await response.json();
-      } catch (error) {
-        status = { error: String(error) };
-      }
+      status = await getStatus(httpPort);
       run.kill('SIGTERM');
       exit = await runExit;
       run = null;
     }
     await sleep(300);  // the relay's last O lines
-    return summarize(o, baud, condition, { v, g, status, relayOut, markNs, endNs, exit, runLog });
+    return summarize(o, baud, condition,
+      { v, g, status, statusAtMark, relayOut, markNs, endNs, exit, runLog });
   } finally {
     if (run) run.kill('SIGKILL');
     for (const p of started) {
@@ -253,7 +252,17 @@ async function measure(o, baud, condition, dir) {
   }
 }
 
-function summarize(o, baud, condition, { v, g, status, relayOut, markNs, endNs, exit, runLog }) {
+async function getStatus(httpPort) {
+  try {
+    const response = await fetch(`http://127.0.0.1:${httpPort}/api/status`);
+    return await response.json();
+  } catch (error) {
+    return { error: String(error) };
+  }
+}
+
+function summarize(o, baud, condition,
+  { v, g, status, statusAtMark, relayOut, markNs, endNs, exit, runLog }) {
   const seconds = Number(endNs - markNs) / 1e9;
   const writeMs = [];
   const captureMs = [];
@@ -286,8 +295,11 @@ function summarize(o, baud, condition, { v, g, status, relayOut, markNs, endNs, 
       to_vehicle_queue_max: Number(b[7]),
     };
   }
-  const vehicleStatus = status && Array.isArray(status.vehicles) ? status.vehicles[0] : null;
-  const counters = gcsCounters(vehicleStatus);
+  // mocaplink's own counters over the window: at the end minus at the mark.
+  const vehicleOf = (st) => (st && Array.isArray(st.vehicles) ? st.vehicles[0] : null);
+  const atEnd = gcsCounters(vehicleOf(status));
+  const atMark = gcsCounters(vehicleOf(statusAtMark));
+  const counters = Object.fromEntries(Object.entries(atEnd).map(([k, x]) => [k, x - (atMark[k] ?? 0)]));
   const dropKeys = Object.keys(counters).filter((k) => /drop/i.test(k));
   const perS = (x) => (x === undefined || x === null ? null : x / seconds);
   const ms = (list) => (list.length ? median(list) / 1000 : null);
@@ -319,7 +331,7 @@ function summarize(o, baud, condition, { v, g, status, relayOut, markNs, endNs, 
       other_systems_frames: g ? g.from_others.frames : null,
     },
     mocaplink_reports: { dropped: dropKeys.length ? dropKeys.reduce((s, k) => s + counters[k], 0) : null,
-                         gcs_counters: counters, exit },
+                         gcs_counters_in_window: counters, gcs_counters_at_end: atEnd, exit },
     tasks: g ? {
       param_downloads: g.done.param_downloads.length, param_download_s: ms(g.done.param_downloads),
       log_listings: g.done.log_listings.length, log_listing_s: ms(g.done.log_listings),
@@ -331,6 +343,7 @@ function summarize(o, baud, condition, { v, g, status, relayOut, markNs, endNs, 
     crc_failures: { vehicle: v.crc_failures, gcs: g ? g.crc_failures : null },
     line,
     mocaplink_warnings: runLog.split('\n').filter((l) => / warning /.test(l)).slice(0, 5),
+    mocaplink_final: runLog.split('\n').filter((l) => / final: /.test(l)),
   };
 }
 
@@ -402,22 +415,34 @@ function medians(results) {
 
 function table(rows) {
   const f = (x, digits = 1) => (x === null || x === undefined ? '–' : x.toFixed(digits));
-  const lines = [
-    '| baud | condition | poses Hz | write→vehicle p50 / p99 ms | ×baseline p50 / p99 | ' +
-      'capture→vehicle p50 / p99 ms | GCS→vehicle frames/s sent / delivered (B/s) | lost | ' +
-      'mocaplink dropped | vehicle→GCS frames/s (B/s) | params s (n) | mission s (n) | ' +
-      'line use → vehicle | queue full ms |',
-    '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|',
+  const pct = (x) => (x === null || x === undefined ? '–' : `${(100 * x).toFixed(0)} %`);
+  const poses = [
+    '| baud | condition | poses Hz | write→vehicle p50 / p99 ms | × baseline p50 / p99 | ' +
+      'capture→vehicle p50 / p99 ms | line use → vehicle | relay queue full ms |',
+    '|---|---|---:|---|---|---|---:|---:|',
+  ];
+  const traffic = [
+    '| baud | condition | GCS→vehicle frames/s sent / delivered | B/s delivered | lost | ' +
+      'mocaplink dropped | vehicle→GCS frames/s | B/s | × direct (→vehicle / →GCS) | ' +
+      'parameters s (n) | mission s (n) |',
+    '|---|---|---|---:|---:|---:|---:|---:|---|---|---|',
   ];
   for (const m of rows) {
-    lines.push(`| ${m.baud} | ${m.condition} | ${f(m.pose_hz)} | ${f(m.write_p50)} / ${f(m.write_p99)} | ` +
-      `${f(m.ratio_write_p50, 2)} / ${f(m.ratio_write_p99, 2)} | ${f(m.capture_p50)} / ${f(m.capture_p99)} | ` +
-      `${f(m.to_vehicle_sent_fps)} / ${f(m.to_vehicle_fps)} (${f(m.to_vehicle_bps, 0)}) | ` +
-      `${f(m.to_vehicle_lost, 0)} | ${f(m.mocaplink_dropped, 0)} | ${f(m.to_gcs_fps)} (${f(m.to_gcs_bps, 0)}) | ` +
-      `${f(m.param_download_s)} (${f(m.param_downloads, 0)}) | ${f(m.mission_upload_s, 2)} (${f(m.mission_uploads, 0)}) | ` +
-      `${m.line_use === null ? '–' : `${(100 * m.line_use).toFixed(0)}%`} | ${f(m.full_ms, 0)} |`);
+    if (!m.condition.startsWith('direct-')) {
+      poses.push(`| ${m.baud} | ${m.condition} | ${f(m.pose_hz)} | ${f(m.write_p50)} / ${f(m.write_p99)} | ` +
+        `${f(m.ratio_write_p50, 2)} / ${f(m.ratio_write_p99, 2)} | ${f(m.capture_p50)} / ${f(m.capture_p99)} | ` +
+        `${pct(m.line_use)} | ${f(m.full_ms, 0)} |`);
+    }
+    if (m.condition !== 'baseline' && m.condition !== 'idle') {
+      const d = m.vs_direct || {};
+      traffic.push(`| ${m.baud} | ${m.condition} | ${f(m.to_vehicle_sent_fps)} / ${f(m.to_vehicle_fps)} | ` +
+        `${f(m.to_vehicle_bps, 0)} | ${f(m.to_vehicle_lost, 0)} | ${f(m.mocaplink_dropped, 0)} | ` +
+        `${f(m.to_gcs_fps)} | ${f(m.to_gcs_bps, 0)} | ${f(d.to_vehicle_fps, 2)} / ${f(d.to_gcs_fps, 2)} | ` +
+        `${f(m.param_download_s)} (${f(m.param_downloads, 0)}) | ` +
+        `${f(m.mission_upload_s, 2)} (${f(m.mission_uploads, 0)}) |`);
+    }
   }
-  return lines.join('\n');
+  return `${poses.join('\n')}\n\n${traffic.join('\n')}`;
 }
 
 async function main() {
@@ -438,8 +463,8 @@ async function main() {
         r.repetition = repetition;
         results.push(r);
         console.error(`${baud} ${condition} #${repetition}: poses ${r.pose.rate_hz.toFixed(1)} Hz, ` +
-          `write→vehicle p50 ${r.pose.write_to_vehicle_ms.p50?.toFixed(2)} p99 ` +
-          `${r.pose.write_to_vehicle_ms.p99?.toFixed(2)} ms, GCS→vehicle ` +
+          `write→vehicle p50 ${r.pose.write_to_vehicle_ms.p50?.toFixed(2) ?? '–'} p99 ` +
+          `${r.pose.write_to_vehicle_ms.p99?.toFixed(2) ?? '–'} ms, GCS→vehicle ` +
           `${r.to_vehicle.delivered_frames_per_s.toFixed(1)} frames/s, vehicle→GCS ` +
           `${r.to_gcs.delivered_frames_per_s?.toFixed(1) ?? '–'} frames/s`);
       }
