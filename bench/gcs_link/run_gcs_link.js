@@ -32,9 +32,10 @@
 //     vehicle received from system 255, and the vehicle's frames/s and bytes/s the ground station
 //     received; the difference toward the vehicle is what was lost (dropped by mocaplink: poses
 //     first; ± the few frames in flight at the window's edges), and what mocaplink itself
-//     reports dropped in the window (the sum of the counters in /api/status's vehicle whose key
-//     says `drop`, under a key naming `gcs` or `forward`, at the end minus at the start; all such
-//     counters are in the JSON);
+//     reports dropped in the window, from /api/status's vehicle at the end minus at the start:
+//     toward the vehicle the counters named *forward*drop* (`link_share.forwarded_dropped`),
+//     toward the ground station those named drop under `gcs` (`gcs[i].dropped`: also what had
+//     no ground station to go to); every counter under `gcs` or `link_share`/forward* is in the JSON;
 //   * completed parameter downloads, log listings and mission uploads, with their median time;
 //   * the emulated line's use toward the vehicle and how long the relay's queue was full.
 // Medians over --runs (3) repetitions; a markdown table on stdout, everything as JSON (--json FILE,
@@ -46,6 +47,7 @@
 // Usage: node bench/gcs_link/run_gcs_link.js --mocaplink BIN --relay BIN [--seconds 20]
 //   [--runs 3] [--warmup 5] [--bauds 57600,921600] [--rate 57600:15,921600:50]
 //   [--conditions baseline,idle,download,upload,direct-download,direct-upload] [--json FILE]
+//   [--raw 1]   (--raw 1: every pose's times in the JSON, to see when a p99 happened)
 // Build: cmake --build --preset ci --target mocaplink gcs_uart_relay (build/ci/mocaplink,
 // build/ci/bench/gcs_uart_relay). Takes ~(seconds + 8) × conditions × runs × bauds seconds.
 'use strict';
@@ -62,7 +64,7 @@ function parseArgs(argv) {
   const o = { seconds: 20, runs: 3, warmup: 5, bauds: [57600, 921600],
               rate: { 57600: 15, 921600: 50 }, conditions: ['baseline', 'idle', 'download', 'upload', 'direct-download',
                            'direct-upload'],
-              json: null, mocaplink: null, relay: null };
+              json: null, mocaplink: null, relay: null, raw: false };
   for (let i = 0; i < argv.length; i += 2) {
     const [key, value] = [argv[i], argv[i + 1]];
     if (value === undefined) throw new Error(`${key} needs a value`);
@@ -79,6 +81,7 @@ function parseArgs(argv) {
       }
     } else if (key === '--conditions') o.conditions = value.split(',');
     else if (key === '--json') o.json = value;
+    else if (key === '--raw') o.raw = value === '1';
     else throw new Error(`unknown option ${key}`);
   }
   if (!o.mocaplink || !o.relay) throw new Error('--mocaplink BIN and --relay BIN are required');
@@ -149,7 +152,7 @@ function gcsCounters(value, at = '', inside = false, out = {}) {
     if (inside) out[at] = value;
   } else if (typeof value === 'object') {
     for (const [k, v] of Object.entries(value)) {
-      gcsCounters(v, at ? `${at}.${k}` : k, inside || /gcs|ground|forward/i.test(k), out);
+      gcsCounters(v, at ? `${at}.${k}` : k, inside || /gcs|ground|forward|share/i.test(k), out);
     }
   }
   return out;
@@ -267,6 +270,8 @@ function summarize(o, baud, condition,
   const writeMs = [];
   const captureMs = [];
   const lineMs = [];
+  const ahead = [];
+  const raw = [];
   let unmatched = 0;
   for (const [timeUsec, recvText] of v.odometry) {
     const recvNs = BigInt(recvText);
@@ -278,6 +283,11 @@ function summarize(o, baud, condition,
     }
     writeMs.push(Number(recvNs - r.readNs) / 1e6);
     lineMs.push(Number(r.doneNs - r.readNs) / 1e6);
+    ahead.push(r.ahead);
+    if (o.raw) {
+      raw.push([Number(BigInt(timeUsec) * 1000n - markNs) / 1e6, Number(r.readNs - markNs) / 1e6,
+                Number(recvNs - markNs) / 1e6, r.ahead]);
+    }
   }
   // The relay's cumulative counters over the window: the first line after the mark, the last
   // before the end.
@@ -300,7 +310,11 @@ function summarize(o, baud, condition,
   const atEnd = gcsCounters(vehicleOf(status));
   const atMark = gcsCounters(vehicleOf(statusAtMark));
   const counters = Object.fromEntries(Object.entries(atEnd).map(([k, x]) => [k, x - (atMark[k] ?? 0)]));
-  const dropKeys = Object.keys(counters).filter((k) => /drop/i.test(k));
+  // Dropped toward the vehicle (the forwarded queue, poses first) and toward the ground station.
+  const sum = (re) => {
+    const keys = Object.keys(counters).filter((k) => re.test(k));
+    return keys.length ? keys.reduce((total, k) => total + counters[k], 0) : null;
+  };
   const perS = (x) => (x === undefined || x === null ? null : x / seconds);
   const ms = (list) => (list.length ? median(list) / 1000 : null);
   return {
@@ -311,6 +325,8 @@ function summarize(o, baud, condition,
                              max: quantile(writeMs, 1) },
       capture_to_vehicle_ms: { p50: quantile(captureMs, 0.5), p99: quantile(captureMs, 0.99) },
       on_line_ms: { p50: quantile(lineMs, 0.5), p99: quantile(lineMs, 0.99) },
+      // Bytes still queued on the line when the pose was written: what delayed it.
+      bytes_ahead: { p50: quantile(ahead, 0.5), p99: quantile(ahead, 0.99), max: quantile(ahead, 1) },
       not_seen_by_relay: unmatched,
     },
     to_vehicle: {
@@ -330,8 +346,10 @@ function summarize(o, baud, condition,
       delivered_bytes_per_s: g ? perS(g.from_vehicle.bytes) : null,
       other_systems_frames: g ? g.from_others.frames : null,
     },
-    mocaplink_reports: { dropped: dropKeys.length ? dropKeys.reduce((s, k) => s + counters[k], 0) : null,
+    mocaplink_reports: { dropped_to_vehicle: sum(/forward\w*drop/i),
+                         dropped_to_gcs: sum(/^gcs\.\d+\.\w*drop/i),
                          gcs_counters_in_window: counters, gcs_counters_at_end: atEnd, exit },
+    raw_poses_ms: o.raw ? raw : undefined,  // [capture, written, received] after the mark, bytes ahead
     tasks: g ? {
       param_downloads: g.done.param_downloads.length, param_download_s: ms(g.done.param_downloads),
       log_listings: g.done.log_listings.length, log_listing_s: ms(g.done.log_listings),
@@ -352,6 +370,7 @@ const METRICS = {
   pose_hz: (r) => r.pose.rate_hz,
   write_p50: (r) => r.pose.write_to_vehicle_ms.p50,
   write_p99: (r) => r.pose.write_to_vehicle_ms.p99,
+  ahead_p99: (r) => r.pose.bytes_ahead.p99,
   capture_p50: (r) => r.pose.capture_to_vehicle_ms.p50,
   capture_p99: (r) => r.pose.capture_to_vehicle_ms.p99,
   to_vehicle_sent_fps: (r) => r.to_vehicle.gcs_sent_frames_per_s,
@@ -360,7 +379,8 @@ const METRICS = {
   to_vehicle_lost: (r) => r.to_vehicle.lost_frames,
   to_gcs_fps: (r) => r.to_gcs.delivered_frames_per_s,
   to_gcs_bps: (r) => r.to_gcs.delivered_bytes_per_s,
-  mocaplink_dropped: (r) => r.mocaplink_reports.dropped,
+  dropped_to_vehicle: (r) => r.mocaplink_reports.dropped_to_vehicle,
+  dropped_to_gcs: (r) => r.mocaplink_reports.dropped_to_gcs,
   param_download_s: (r) => (r.tasks ? r.tasks.param_download_s : null),
   param_downloads: (r) => (r.tasks ? r.tasks.param_downloads : null),
   mission_upload_s: (r) => (r.tasks ? r.tasks.mission_upload_s : null),
@@ -418,12 +438,12 @@ function table(rows) {
   const pct = (x) => (x === null || x === undefined ? '–' : `${(100 * x).toFixed(0)} %`);
   const poses = [
     '| baud | condition | poses Hz | write→vehicle p50 / p99 ms | × baseline p50 / p99 | ' +
-      'capture→vehicle p50 / p99 ms | line use → vehicle | relay queue full ms |',
-    '|---|---|---:|---|---|---|---:|---:|',
+      'capture→vehicle p50 / p99 ms | bytes ahead p99 | line use → vehicle | relay queue full ms |',
+    '|---|---|---:|---|---|---|---:|---:|---:|',
   ];
   const traffic = [
     '| baud | condition | GCS→vehicle frames/s sent / delivered | B/s delivered | lost | ' +
-      'mocaplink dropped | vehicle→GCS frames/s | B/s | × direct (→vehicle / →GCS) | ' +
+      'mocaplink dropped →vehicle / →GCS | vehicle→GCS frames/s | B/s | × direct (→vehicle / →GCS) | ' +
       'parameters s (n) | mission s (n) |',
     '|---|---|---|---:|---:|---:|---:|---:|---|---|---|',
   ];
@@ -431,12 +451,13 @@ function table(rows) {
     if (!m.condition.startsWith('direct-')) {
       poses.push(`| ${m.baud} | ${m.condition} | ${f(m.pose_hz)} | ${f(m.write_p50)} / ${f(m.write_p99)} | ` +
         `${f(m.ratio_write_p50, 2)} / ${f(m.ratio_write_p99, 2)} | ${f(m.capture_p50)} / ${f(m.capture_p99)} | ` +
-        `${pct(m.line_use)} | ${f(m.full_ms, 0)} |`);
+        `${f(m.ahead_p99, 0)} | ${pct(m.line_use)} | ${f(m.full_ms, 0)} |`);
     }
     if (m.condition !== 'baseline' && m.condition !== 'idle') {
       const d = m.vs_direct || {};
       traffic.push(`| ${m.baud} | ${m.condition} | ${f(m.to_vehicle_sent_fps)} / ${f(m.to_vehicle_fps)} | ` +
-        `${f(m.to_vehicle_bps, 0)} | ${f(m.to_vehicle_lost, 0)} | ${f(m.mocaplink_dropped, 0)} | ` +
+        `${f(m.to_vehicle_bps, 0)} | ${f(m.to_vehicle_lost, 0)} | ` +
+        `${f(m.dropped_to_vehicle, 0)} / ${f(m.dropped_to_gcs, 0)} | ` +
         `${f(m.to_gcs_fps)} | ${f(m.to_gcs_bps, 0)} | ${f(d.to_vehicle_fps, 2)} / ${f(d.to_gcs_fps, 2)} | ` +
         `${f(m.param_download_s)} (${f(m.param_downloads, 0)}) | ` +
         `${f(m.mission_upload_s, 2)} (${f(m.mission_uploads, 0)}) |`);
