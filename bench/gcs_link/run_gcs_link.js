@@ -37,7 +37,8 @@
 //     toward the ground station those named drop under `gcs` (`gcs[i].dropped`: also what had
 //     no ground station to go to); every counter under `gcs` or `link_share`/forward* is in the JSON;
 //   * completed parameter downloads, log listings and mission uploads, with their median time;
-//   * the emulated line's use toward the vehicle and how long the relay's queue was full.
+//   * the emulated line's use toward the vehicle and how long the relay's queue was full;
+//   * the CPU each process used over the window (% of one core; mocaplink's in the table).
 // Medians over --runs (3) repetitions; a markdown table on stdout, everything as JSON (--json FILE,
 // default stdout's tail).
 // Conditions that need `gcs` are skipped (and said so) when `mocaplink check` refuses the key.
@@ -112,6 +113,17 @@ const median = (values) => {
   const s = [...v].sort((a, b) => a - b);
   return s.length % 2 ? s[(s.length - 1) / 2] : (s[s.length / 2 - 1] + s[s.length / 2]) / 2;
 };
+
+/// CPU time (user + system) a process has used, in seconds; null once it is gone.
+function cpuSeconds(pid) {
+  try {
+    const stat = fs.readFileSync(`/proc/${pid}/stat`, 'utf8');
+    const fields = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+    return (Number(fields[11]) + Number(fields[12])) / 100;  // utime, stime in USER_HZ (100)
+  } catch {
+    return null;
+  }
+}
 
 async function freePort(kind) {
   if (kind === 'tcp') {
@@ -229,9 +241,18 @@ async function measure(o, baud, condition, dir) {
     await vehicle.ask('mark', 'marked');
     if (gcs) await gcs.ask('mark', 'marked');
     const markNs = nowNs();
+    const pids = { mocaplink: run ? run.pid : null, relay: relay.pid,
+                   vehicle: vehicle.child.pid, gcs: gcs ? gcs.child.pid : null };
+    const cpuAtMark = Object.fromEntries(Object.entries(pids).map(([k, pid]) => [k, pid && cpuSeconds(pid)]));
+    const loadAtMark = os.loadavg()[0];
     const statusAtMark = run ? await getStatus(httpPort) : null;
     await sleep(o.seconds * 1000);
     const endNs = nowNs();
+    // CPU over the window, % of one core.
+    const cpu = Object.fromEntries(Object.entries(pids).map(([k, pid]) => {
+      const [a, b] = [cpuAtMark[k], pid && cpuSeconds(pid)];
+      return [k, a === null || b === null || !pid ? null : (100 * (b - a)) / (Number(endNs - markNs) / 1e9)];
+    }));
     const v = await vehicle.ask('report', 'report');
     const g = gcs ? await gcs.ask('report', 'report') : null;
     let status = null;
@@ -243,8 +264,9 @@ async function measure(o, baud, condition, dir) {
       run = null;
     }
     await sleep(300);  // the relay's last O lines
-    return summarize(o, baud, condition,
+    const r = summarize(o, baud, condition,
       { v, g, status, statusAtMark, relayOut, markNs, endNs, exit, runLog });
+    return { ...r, cpu_percent: cpu, load_at_start: loadAtMark };
   } finally {
     if (run) run.kill('SIGKILL');
     for (const p of started) {
@@ -387,6 +409,7 @@ const METRICS = {
   mission_uploads: (r) => (r.tasks ? r.tasks.mission_uploads : null),
   line_use: (r) => (r.line ? r.line.to_vehicle_use : null),
   full_ms: (r) => (r.line ? r.line.to_vehicle_full_ms + r.line.from_vehicle_full_ms : null),
+  mocaplink_cpu: (r) => (r.cpu_percent ? r.cpu_percent.mocaplink : null),
 };
 
 function medians(results) {
@@ -438,8 +461,9 @@ function table(rows) {
   const pct = (x) => (x === null || x === undefined ? '–' : `${(100 * x).toFixed(0)} %`);
   const poses = [
     '| baud | condition | poses Hz | write→vehicle p50 / p99 ms | × baseline p50 / p99 | ' +
-      'capture→vehicle p50 / p99 ms | bytes ahead p99 | line use → vehicle | relay queue full ms |',
-    '|---|---|---:|---|---|---|---:|---:|---:|',
+      'capture→vehicle p50 / p99 ms | bytes ahead p99 | line use → vehicle | relay queue full ms | ' +
+      'mocaplink CPU |',
+    '|---|---|---:|---|---|---|---:|---:|---:|---:|',
   ];
   const traffic = [
     '| baud | condition | GCS→vehicle frames/s sent / delivered | B/s delivered | lost | ' +
@@ -451,7 +475,7 @@ function table(rows) {
     if (!m.condition.startsWith('direct-')) {
       poses.push(`| ${m.baud} | ${m.condition} | ${f(m.pose_hz)} | ${f(m.write_p50)} / ${f(m.write_p99)} | ` +
         `${f(m.ratio_write_p50, 2)} / ${f(m.ratio_write_p99, 2)} | ${f(m.capture_p50)} / ${f(m.capture_p99)} | ` +
-        `${f(m.ahead_p99, 0)} | ${pct(m.line_use)} | ${f(m.full_ms, 0)} |`);
+        `${f(m.ahead_p99, 0)} | ${pct(m.line_use)} | ${f(m.full_ms, 0)} | ${f(m.mocaplink_cpu)} % |`);
     }
     if (m.condition !== 'baseline' && m.condition !== 'idle') {
       const d = m.vs_direct || {};
