@@ -170,9 +170,24 @@ function gcsCounters(value, at = '', inside = false, out = {}) {
   return out;
 }
 
+// Every process started, ended with the bench (also when it is interrupted).
+const children = new Set();
+function track(child) {
+  children.add(child);
+  child.on('exit', () => children.delete(child));
+  return child;
+}
+for (const signal of ['SIGINT', 'SIGTERM']) {
+  process.on(signal, () => {
+    for (const child of children) child.kill('SIGKILL');
+    process.exit(1);
+  });
+}
+
 // --- One child process talking over IPC. -----------------------------------------------------------
 function forkChild(script, args) {
-  const child = fork(path.join(__dirname, script), args, { stdio: ['ignore', 'inherit', 'pipe', 'ipc'] });
+  const child = track(fork(path.join(__dirname, script), args,
+    { stdio: ['ignore', 'inherit', 'pipe', 'ipc'] }));
   const proc = { child, messages: [], stderr: '' };
   child.stderr.on('data', (d) => { proc.stderr += d; });
   child.on('message', (m) => proc.messages.push(m));
@@ -189,7 +204,7 @@ function forkChild(script, args) {
 
 // --- One run. -------------------------------------------------------------------------------------
 async function measure(o, baud, condition, dir) {
-  const relay = spawn(o.relay, [String(baud)], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const relay = track(spawn(o.relay, [String(baud)], { stdio: ['ignore', 'pipe', 'inherit'] }));
   const relayOut = { a: null, b: null, odometry: new Map(), stats: [] };
   readline.createInterface({ input: relay.stdout }).on('line', (line) => {
     const f = line.split(' ');
@@ -221,9 +236,9 @@ async function measure(o, baud, condition, dir) {
       httpPort = await freePort('tcp');
       const config = path.join(dir, `${baud}-${condition}.toml`);
       writeConfig(config, { tty: relayOut.a, baud, rateHz: o.rate[baud], gcsPort, httpPort });
-      run = spawn(o.mocaplink, ['run', '--config', config], {
+      run = track(spawn(o.mocaplink, ['run', '--config', config], {
         env: { ...process.env, MOCAPLINK_STATE_DIR: path.join(dir, `state-${baud}-${condition}`) },
-        stdio: ['ignore', 'ignore', 'pipe'] });
+        stdio: ['ignore', 'ignore', 'pipe'] }));
       run.stderr.on('data', (d) => { runLog += d; });
       runExit = new Promise((r) => run.on('exit', (code, signal) => r({ code, signal })));
       await waitFor(() => relayOut.odometry.size > 0, 15000, `poses on the link\n${runLog}`);
