@@ -39,7 +39,12 @@ class Writer {
     if constexpr (std::endian::native == std::endian::big) {
       for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(raw[i], raw[sizeof(T) - 1 - i]);
     }
-    out_.insert(out_.end(), raw.begin(), raw.end());
+    // resize + memcpy, not insert(end, raw.begin(), raw.end()): on a vector reserved to the
+    // exact size, GCC 12 at -O2 and above inlines insert's reallocation path and reports a false
+    // -Wstringop-overflow (a file-by-file build of qtm_protocol.cpp showed it).
+    const std::size_t at = out_.size();
+    out_.resize(at + sizeof(T));
+    std::memcpy(out_.data() + at, raw.data(), sizeof(T));
   }
 
   void put_bytes(std::span<const std::byte> bytes) {
