@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "mocaplink/core/gcs_router.hpp"
-#include "mocaplink/mavlink/routing.hpp"
 #include "mocaplink/mavlink/stream_parser.hpp"
 
 namespace {
@@ -24,16 +23,6 @@ using namespace mocaplink;
 
 void require(bool ok) {
   if (!ok) std::abort();
-}
-
-core::RouteInfo route_of(const mavlink::FrameView& frame) {
-  core::RouteInfo info{frame.sysid, frame.compid};
-  if (const auto target = mavlink::message_target(frame)) {
-    info.has_target = true;
-    info.target_system = target->system;
-    info.target_component = target->component;
-  }
-  return info;
 }
 
 }  // namespace
@@ -53,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<std::string> notes;
   bool detached = false;
   parser.feed(std::span<const std::uint8_t>(data, size), 0, [&](const mavlink::FrameView& frame) {
-    const core::RouteInfo info = route_of(frame);
+    const core::RouteInfo info = core::route_info(frame);
     const std::size_t endpoint = frames % 2;
     out.clear();
     router.from_gcs(endpoint, info, now, out, notes, "fuzz");

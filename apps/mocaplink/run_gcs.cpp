@@ -8,23 +8,12 @@
 
 #include "mocaplink/io/clock.hpp"
 #include "mocaplink/io/make_link.hpp"
-#include "mocaplink/mavlink/routing.hpp"
 
 namespace mocaplink::app {
 namespace {
 
 /// What the router needs of a frame: its sender and the target its message
 /// names, if any.
-core::RouteInfo route_of(const mavlink::FrameView& frame) {
-  core::RouteInfo info{frame.sysid, frame.compid};
-  if (const auto target = mavlink::message_target(frame)) {
-    info.has_target = true;
-    info.target_system = target->system;
-    info.target_component = target->component;
-  }
-  return info;
-}
-
 /// A closed endpoint is destroyed this long after its close, once every
 /// completion its close queued has run (io/link.hpp: a link must outlive its
 /// handlers).
@@ -86,7 +75,7 @@ void GroundStations::on_gcs_frame(std::size_t endpoint, const mavlink::FrameView
                                   core::HostTime t) {
   slots_.clear();
   std::vector<std::string> notes;
-  router_.from_gcs(endpoint, route_of(frame), t, slots_, notes, endpoints_[endpoint].url);
+  router_.from_gcs(endpoint, core::route_info(frame), t, slots_, notes, endpoints_[endpoint].url);
   for (const auto& note : notes) spdlog::info("{}", note);
   for (const std::size_t slot : slots_) to_vehicle_(slot, frame.bytes);
 }
@@ -94,7 +83,7 @@ void GroundStations::on_gcs_frame(std::size_t endpoint, const mavlink::FrameView
 void GroundStations::from_vehicle(std::size_t slot, const mavlink::FrameView& frame) {
   if (endpoints_.empty()) return;
   targets_.clear();
-  router_.from_vehicle(slot, route_of(frame), targets_);
+  router_.from_vehicle(slot, core::route_info(frame), targets_);
   for (const std::size_t e : targets_) {
     // An endpoint no ground station has reached yet (udpin nobody spoke to, tcpin without a
     // connection) is skipped, not counted as a drop: nobody is missing those frames.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mocaplink/mavlink/routing.hpp"
+
 namespace mocaplink::core {
 namespace {
 
@@ -10,6 +12,16 @@ std::string peer_name(std::uint8_t sysid, std::uint8_t compid) {
 }
 
 }  // namespace
+
+RouteInfo route_info(const mavlink::FrameView& frame) {
+  RouteInfo info{frame.sysid, frame.compid};
+  if (const auto target = mavlink::message_target(frame)) {
+    info.has_target = true;
+    info.target_system = target->system;
+    info.target_component = target->component;
+  }
+  return info;
+}
 
 GcsRouter::State& GcsRouter::at(Endpoint endpoint) {
   if (endpoint >= endpoints_.size()) endpoints_.resize(endpoint + 1);

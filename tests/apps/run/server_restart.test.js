@@ -12,7 +12,6 @@
 //   was, docs/daemon.md) gives both vehicles the same reset_counter sequence.
 'use strict';
 
-const net = require('node:net');
 const path = require('node:path');
 const h = require('./harness');
 const scene = require('./scene');
@@ -20,14 +19,6 @@ const scene = require('./scene');
 const { assert, ID } = h;
 const OUTAGE_MS = 1000;
 const ORIGIN = '[origin]\nlatitude_deg = 47.397742\nlongitude_deg = 8.545594\naltitude_m = 488.0\n';
-
-async function freeTcpPort() {
-  const server = net.createServer();
-  await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
-  const { port } = server.address();
-  await new Promise((resolve) => server.close(resolve));
-  return port;
-}
 
 function serve(sceneFile, port) {
   return h.mocaplink(['serve', '--protocol', 'vicon', '--from', `replay:${sceneFile}`,
@@ -69,7 +60,7 @@ async function main() {
   const dir = h.tempDir('restart');
   const sceneFile = path.join(dir, 'scene.csv');
   scene.writeScene(sceneFile, 30);
-  const port = await freeTcpPort();
+  const port = await h.freeTcpPort();
   let server = serve(sceneFile, port);
   await h.waitFor(() => /serving vicon on/.test(server.stdout), 10000,
     `serve to start\n${server.stderr}`);

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "mocaplink/core/time.hpp"
+#include "mocaplink/mavlink/frame.hpp"
 
 namespace mocaplink::core {
 
@@ -38,6 +39,9 @@ struct RouteInfo {
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
 };
+
+/// A frame's sender and, where its message has one, its target (mavlink::message_target).
+[[nodiscard]] RouteInfo route_info(const mavlink::FrameView& frame);
 
 class GcsRouter {
  public:
