@@ -15,12 +15,13 @@ std::chrono::nanoseconds PosesFirst::air_time(std::size_t bytes) const {
 void PosesFirst::occupy(std::size_t bytes, core::HostTime now) {
   // At most a full queue's air time ahead: a link that takes bytes faster than its nominal speed
   // (a pty, USB serial) would otherwise let the model run ahead of the wire without bound.
-  busy_until_ = std::min(std::max(busy_until_, now) + air_time(bytes),
-                         now + air_time(options_.max_queue_bytes));
+  busy_until_ =
+      std::min(std::max(busy_until_, now) + air_time(bytes), now + air_time(kModelCapBytes));
 }
 
 void PosesFirst::observe_unsent(std::size_t bytes, core::HostTime now) {
-  if (options_.bytes_per_second > 0.0) busy_until_ = now + air_time(bytes);
+  // Only ever later: a pty (or a USB serial port) says 0 while the line behind it is still busy.
+  if (options_.bytes_per_second > 0.0) busy_until_ = std::max(busy_until_, now + air_time(bytes));
 }
 
 void PosesFirst::on_own_write(std::size_t bytes, core::HostTime now) {

@@ -105,12 +105,18 @@ TEST_F(Serial57600, AnOverloadedLinkDoesNotPushTheModelBeyondAFullQueue) {
   EXPECT_TRUE(gate.next(t + milliseconds(1), retry));
 }
 
-TEST_F(Serial57600, WhatTheOsHoldsReplacesTheModel) {
-  gate.on_own_write(4000, t0);  // the model: 0.69 s of air time
+TEST_F(Serial57600, WhatTheOsHoldsCanOnlyMakeTheLineBusierThanTheModel) {
+  gate.on_own_write(245, t0);  // the model: busy until 42.5 ms
   ASSERT_TRUE(gate.push(frame(57), t0));
-  EXPECT_FALSE(gate.next(t0 + milliseconds(1), retry));
-  gate.observe_unsent(0, t0 + milliseconds(2));  // the OS has sent it all
-  EXPECT_TRUE(gate.next(t0 + milliseconds(2), retry));
+  // A pty says 0 while the line behind it still sends the pose: the model stands.
+  gate.observe_unsent(0, t0 + milliseconds(1));
+  ASSERT_TRUE(gate.next(t0 + milliseconds(1), retry));  // 42.5 + 9.9 < 60 ms: fits
+  ASSERT_TRUE(gate.push(frame(57), t0 + milliseconds(2)));
+  EXPECT_FALSE(gate.next(t0 + milliseconds(2), retry));  // behind both: 62 ms > 60
+  // A real UART that says it still holds 200 bytes more than the model knew: later, not earlier.
+  gate.on_own_write(245, t0 + milliseconds(66));
+  gate.observe_unsent(245 + 200, t0 + milliseconds(66));
+  EXPECT_FALSE(gate.next(t0 + milliseconds(67), retry));  // 66 + 77 + 10 > 126 ms
 }
 
 TEST_F(Serial57600, ClearDropsWhatWaits) {

@@ -11,13 +11,14 @@
 //     write, less a tenth of a period for the mocap's jitter. When no own frame has been written
 //     for 1.5 periods (no mocap frames, the vehicle paused), nothing is due and the queue flows.
 // A link of unknown speed (TCP) gets only the first rule.
-// The model never runs ahead of reality for long: what the OS says it still holds (TIOCOUTQ)
-// replaces the modelled backlog whenever the link can ask, and the model holds at most
-// max_queue_bytes of air time (a pty or a USB serial port takes bytes faster than its nominal
-// baud). A forwarded frame older than max_age is dropped and counted, never sent: a ground
-// station repeats what it still wants, and a command delivered seconds late (an ARM) must not
-// arrive at all.
-// Pure: time is passed in. Not thread-safe (one owner, the link's loop thread).
+// The model never runs ahead of reality for long, nor behind it: it holds at most a tty's output
+// buffer (kModelCapBytes) of air time — a pty or a USB serial port takes bytes faster than its
+// nominal baud, so an overload must not make the model owe seconds —, and what the OS says it
+// still holds (TIOCOUTQ) can only make it later, never earlier (a pty reads 0 while the radio
+// behind it is still busy). A forwarded frame older than max_age is dropped and counted, never
+// sent: a ground station repeats what it still wants, and a command delivered seconds late (an ARM)
+// must not arrive at all. Pure: time is passed in. Not thread-safe (one owner, the link's loop
+// thread).
 #pragma once
 
 #include <chrono>
@@ -48,6 +49,9 @@ class PosesFirst {
     std::uint64_t own_bytes = 0;  ///< mocaplink's own bytes written (the poses' share)
   };
 
+  /// The modelled backlog never exceeds this many bytes of air time: a tty's output buffer.
+  static constexpr std::size_t kModelCapBytes = 4096;
+
   explicit PosesFirst(Options options);
 
   /// The vehicle's pose period (1 / rate_hz); zero: unknown (no pose rule).
@@ -57,7 +61,8 @@ class PosesFirst {
   /// A forwarded frame, arrived at `now`, waits its turn; false when the queue is full (dropped,
   /// counted).
   bool push(std::span<const std::uint8_t> frame, core::HostTime now);
-  /// The OS still holds `bytes` of what was written (TIOCOUTQ): the UART is busy that long.
+  /// The OS still holds `bytes` of what was written (TIOCOUTQ): the UART is busy at least that
+  /// long.
   void observe_unsent(std::size_t bytes, core::HostTime now);
   /// The link's own queue is empty at `now`: the next forwarded frame to write, or nullopt —
   /// then, if frames wait, `retry_at` says when to ask again. The frame is taken out of the queue.
