@@ -19,8 +19,7 @@ TcpLink::~TcpLink() {
 }
 
 std::string TcpLink::url() const {
-  const bool v6 = host_.find(':') != std::string::npos;
-  return "tcp://" + (v6 ? "[" + host_ + "]" : host_) + ":" + std::to_string(port_);
+  return "tcp://" + detail::host_port_text(host_, port_);
 }
 
 void TcpLink::async_open(OpenHandler done) {
