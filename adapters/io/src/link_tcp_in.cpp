@@ -3,11 +3,8 @@
 #include <utility>
 
 #include <asio/post.hpp>
-#include <asio/read.hpp>
-#include <asio/write.hpp>
 
 #include "resolve.hpp"
-#include "unsent.hpp"
 
 namespace mocaplink::io {
 namespace {
@@ -23,11 +20,10 @@ std::string peer_text(const asio::ip::tcp::socket& socket) {
 
 TcpInLink::TcpInLink(asio::io_context& loop, std::string host, std::uint16_t port,
                      LinkOptions options)
-    : StreamLink(loop, std::move(options)),
+    : TcpSocketLink(loop, std::move(options)),
       host_(std::move(host)),
       port_(port),
       acceptor_(loop),
-      socket_(loop),
       incoming_(loop),
       pending_(loop) {}
 
@@ -84,8 +80,7 @@ void TcpInLink::async_open(OpenHandler done) {
 void TcpInLink::adopt(OpenHandler done) {
   socket_ = std::move(pending_);
   pending_ = asio::ip::tcp::socket(loop_);
-  std::error_code ignored;
-  socket_.set_option(asio::ip::tcp::no_delay(true), ignored);  // a pose leaves now (tcp.hpp)
+  set_no_delay();
   asio::post(loop_, [done = std::move(done), detail = options_.peer + " connected from " +
                                                       peer_text(socket_) + " to " +
                                                       url()] { done(std::error_code{}, detail); });
@@ -115,31 +110,12 @@ void TcpInLink::accept() {
   });
 }
 
-void TcpInLink::async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) {
-  asio::async_write(socket_, asio::buffer(bytes.data(), bytes.size()), std::move(done));
-}
-
-void TcpInLink::async_read_some(std::span<std::uint8_t> buffer, IoHandler done) {
-  socket_.async_read_some(asio::buffer(buffer.data(), buffer.size()), std::move(done));
-}
-
-void TcpInLink::close_transport() noexcept {
-  std::error_code ignored;
-  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
-}
-
 void TcpInLink::release() noexcept {
   std::error_code ignored;
   waiting_ = nullptr;
   acceptor_.close(ignored);
   pending_.close(ignored);
   incoming_.close(ignored);
-}
-
-std::optional<std::size_t> TcpInLink::unsent_bytes() const noexcept {
-  if (!socket_.is_open()) return std::nullopt;
-  return detail::unsent_bytes(const_cast<decltype(socket_)&>(socket_).native_handle());
 }
 
 }  // namespace mocaplink::io

@@ -15,11 +15,11 @@
 #include <asio/io_context.hpp>
 #include <asio/ip/tcp.hpp>
 
-#include "mocaplink/io/link_stream.hpp"
+#include "mocaplink/io/link_tcp_socket.hpp"
 
 namespace mocaplink::io {
 
-class TcpInLink final : public StreamLink {
+class TcpInLink final : public TcpSocketLink {
  public:
   /// `host`: an IP literal, or empty for every IPv4 interface; `port` 1..65535 (0: any free port,
   /// for tests).
@@ -32,10 +32,6 @@ class TcpInLink final : public StreamLink {
 
  private:
   void async_open(OpenHandler done) override;
-  void async_write_all(std::span<const std::uint8_t> bytes, IoHandler done) override;
-  void async_read_some(std::span<std::uint8_t> buffer, IoHandler done) override;
-  void close_transport() noexcept override;
-  [[nodiscard]] std::optional<std::size_t> unsent_bytes() const noexcept override;
   void release() noexcept override;
   bool listen(std::error_code& error);
   void accept();
@@ -44,7 +40,6 @@ class TcpInLink final : public StreamLink {
   std::string host_;
   std::uint16_t port_;
   asio::ip::tcp::acceptor acceptor_;
-  asio::ip::tcp::socket socket_;    // the vehicle's connection
   asio::ip::tcp::socket incoming_;  // being accepted
   asio::ip::tcp::socket pending_;   // accepted, not yet adopted
   OpenHandler waiting_;             // async_open waiting for a connection
