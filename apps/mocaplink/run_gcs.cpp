@@ -12,8 +12,6 @@
 namespace mocaplink::app {
 namespace {
 
-/// What the router needs of a frame: its sender and the target its message
-/// names, if any.
 /// A closed endpoint is destroyed this long after its close, once every
 /// completion its close queued has run (io/link.hpp: a link must outlive its
 /// handlers).
