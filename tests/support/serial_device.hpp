@@ -6,12 +6,20 @@
 
 namespace mocaplink::testing_support {
 
+// kLinkForms: the link forms libs/config lists in its errors, of which the serial one is the
+// platform's.
 #ifdef _WIN32
 inline const std::string kSerialDevice = "COM3";
 inline const std::string kSerialUrlPrefix = "serial://COM3";
+inline const std::string kLinkForms =
+    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "or serial://COMn?baud=N";
 #else
 inline const std::string kSerialDevice = "/dev/ttyUSB0";
 inline const std::string kSerialUrlPrefix = "serial:///dev/ttyUSB0";
+inline const std::string kLinkForms =
+    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "or serial:///dev/DEVICE?baud=N";
 #endif
 
 }  // namespace mocaplink::testing_support

@@ -4,6 +4,7 @@
 #include "mocaplink/config/link_url.hpp"
 #include "mocaplink/config/net_address.hpp"
 #include "mocaplink/config/source_url.hpp"
+#include "serial_device.hpp"
 
 namespace mocaplink::config {
 namespace {
@@ -20,17 +21,8 @@ TEST(SourceUrl, KeepsTheTextAndScheme) {
   EXPECT_EQ(parse_source_url("sim://?bodies").error(), "query item \"bodies\" is not KEY=VALUE");
 }
 
-#ifdef _WIN32
-constexpr std::string_view kForms =
-    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
-    "or serial://COMn?baud=N";
-constexpr const char* kSerial = "serial://COM3";
-#else
-constexpr std::string_view kForms =
-    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
-    "or serial:///dev/DEVICE?baud=N";
-constexpr const char* kSerial = "serial:///dev/ttyUSB0";
-#endif
+using testing_support::kLinkForms;
+using testing_support::kSerialUrlPrefix;
 
 TEST(LinkUrl, ParsesTheThreeKinds) {
   const auto udp = parse_link_url("udp://192.168.1.21:14540");
@@ -121,8 +113,8 @@ TEST(LinkUrl, RejectsBadEndpointForms) {
             "broadcast and multicast addresses are not allowed: pose messages have no target "
             "system, so every vehicle listening would fuse them; give each vehicle its own "
             "unicast address");
-  EXPECT_EQ(error("tcpn://:1"), "unknown link scheme \"tcpn\"; did you mean \"tcp\"? (expected " +
-                                    std::string(kForms) + ")");
+  EXPECT_EQ(error("tcpn://:1"),
+            "unknown link scheme \"tcpn\"; did you mean \"tcp\"? (expected " + kLinkForms + ")");
 }
 
 TEST(LinkUrl, LocalPortsThatCannotBeSharedInOneProcess) {
@@ -154,10 +146,9 @@ TEST(LinkUrl, SerialDevicesAreComPortsOnWindows) {
 
 TEST(LinkUrl, RejectsBadAndSharedDestinations) {
   const auto error = [](const char* url) { return parse_link_url(url).error(); };
-  EXPECT_EQ(error("192.168.1.21:14540"),
-            "expected " + std::string(kForms) + ", got \"192.168.1.21:14540\"");
-  EXPECT_EQ(error("upd://h:1"), "unknown link scheme \"upd\"; did you mean \"udp\"? (expected " +
-                                    std::string(kForms) + ")");
+  EXPECT_EQ(error("192.168.1.21:14540"), "expected " + kLinkForms + ", got \"192.168.1.21:14540\"");
+  EXPECT_EQ(error("upd://h:1"),
+            "unknown link scheme \"upd\"; did you mean \"udp\"? (expected " + kLinkForms + ")");
   EXPECT_EQ(error("udp://h"), "missing port: expected HOST:PORT, got \"h\"");
   EXPECT_EQ(error("udp://h:70000"), "port must be 1..65535, got \"70000\"");
   EXPECT_EQ(error("udp://300.1.1.1:5"), "\"300.1.1.1\" is not a valid IPv4 address");
@@ -177,11 +168,11 @@ TEST(LinkUrl, RejectsBadAndSharedDestinations) {
             "serial device must be an absolute path, as in serial:///dev/ttyUSB0?baud=921600, got "
             "\"dev/ttyUSB0\"");
 #endif
-  EXPECT_EQ(error((std::string(kSerial) + "?baud=1234").c_str()),
+  EXPECT_EQ(error((kSerialUrlPrefix + "?baud=1234").c_str()),
             "baud must be a standard rate (9600, 19200, 38400, 57600, 115200, 230400, 460800, "
             "500000, 576000, 921600, 1000000, 1152000, 1500000, 2000000, 2500000, 3000000, "
             "3500000, 4000000), got \"1234\"");
-  EXPECT_EQ(error((std::string(kSerial) + "?bud=9600").c_str()),
+  EXPECT_EQ(error((kSerialUrlPrefix + "?bud=9600").c_str()),
             "unknown option \"bud\" for serial://; did you mean \"baud\"? (options: baud)");
 }
 
