@@ -1,9 +1,38 @@
 #include "mocaplink/core/sender_clock.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
+#include <span>
+
+#include "mocaplink/core/line_fit.hpp"
 
 namespace mocaplink::core {
+
+namespace {
+/// Complete windows in the drift fit (16 s at 2 s), and how many it needs.
+constexpr std::size_t kDriftWindows = 8;
+constexpr std::size_t kDriftMinWindows = 3;
+}  // namespace
+
+Duration CaptureTimeMapper::projected(const Minimum& m, HostTime t) const {
+  const double ns = drift_ * static_cast<double>((t - m.seen).count());
+  return m.candidate + Duration{static_cast<std::int64_t>(ns)};
+}
+
+void CaptureTimeMapper::fit_drift() {
+  drift_ = 0;
+  if (minima_.size() < kDriftMinWindows) return;
+  // Candidate (ns) against receive time (ns), both from the first minimum.
+  std::array<LinePoint, kDriftWindows> points{};
+  for (std::size_t i = 0; i < minima_.size(); ++i) {
+    points[i] = {static_cast<double>((minima_[i].seen - minima_.front().seen).count()),
+                 static_cast<double>((minima_[i].candidate - minima_.front().candidate).count())};
+  }
+  if (const auto line = fit_line(std::span(points.data(), minima_.size()))) {
+    drift_ = std::clamp(line->slope, -kMaxSourceDrift, kMaxSourceDrift);
+  }
+}
 
 HostTime CaptureTimeMapper::on_frame(SourceTime capture, HostTime received,
                                      std::optional<Duration> latency) {
@@ -11,24 +40,29 @@ HostTime CaptureTimeMapper::on_frame(SourceTime capture, HostTime received,
   Duration reported = latency.value_or(Duration::zero());
   if (reported < Duration::zero() || reported > config_.max_step) reported = Duration::zero();
   const Duration candidate = (received - reported).time_since_epoch() - capture.time_since_epoch();
+  const Minimum sample{candidate, received};
 
   if (!offset_ || std::chrono::abs(candidate - *offset_) > config_.max_step) {
     // First frame, or the source clock jumped (restart): start again from this frame.
     if (offset_) ++reseeds_;
-    current_min_ = candidate;
+    current_min_ = sample;
     previous_min_.reset();
+    minima_.clear();
+    drift_ = 0;
     window_start_ = received;
     last_result_.reset();
-  } else {
-    if (received - window_start_ >= config_.window) {
-      previous_min_ = current_min_;
-      current_min_ = candidate;
-      window_start_ = received;
-    } else {
-      current_min_ = std::min(*current_min_, candidate);
-    }
+  } else if (received - window_start_ >= config_.window) {
+    previous_min_ = current_min_;
+    minima_.push_back(*current_min_);
+    if (minima_.size() > kDriftWindows) minima_.erase(minima_.begin());
+    fit_drift();
+    current_min_ = sample;
+    window_start_ = received;
+  } else if (candidate < projected(*current_min_, received)) {
+    current_min_ = sample;
   }
-  offset_ = previous_min_ ? std::min(*previous_min_, *current_min_) : *current_min_;
+  offset_ = projected(*current_min_, received);
+  if (previous_min_) offset_ = std::min(*offset_, projected(*previous_min_, received));
 
   HostTime result = HostTime{capture.time_since_epoch() + *offset_};
   // Never in the future (offset ≤ this frame's candidate guarantees it up to a dropped latency),

@@ -7,13 +7,19 @@
 //
 //   candidate(frame) = host receive time − source-reported latency (0 when the source reports none)
 //                      − source capture time                      (the clocks' offset + transport)
-//   offset           = minimum candidate over the current and the previous window (2 s each)
+//   drift            = slope of the minima of the latest complete windows (2 s each, up to 8),
+//                      least squares, once there are 3; 0 before; at most ±kMaxSourceDrift
+//   offset(t)        = minimum over the current and the previous window of
+//                      (that window's minimum candidate + drift × (t − when it was seen))
 //   host capture     = source capture + offset, clamped to be > the previous result and ≤ receive
 //
 // The minimum picks the least-delayed frames (network and scheduling delays are never negative),
 // so jitter does not reach the timestamps, and a result never lies in the future — the same
-// reasoning as ArduPilot's JitterCorrection (§4.2). Windows rotate so that a slowly drifting source
-// clock is followed; a jump of more than `max_step` (source restarted, clock reset) re-seeds it.
+// reasoning as ArduPilot's JitterCorrection (§4.2). A source clock that runs at another rate than
+// the host's (a Vicon numbering frames at 100 Hz that come at 99.85 Hz: 1.5 ms/s; a crystal 100
+// ppm off) moves the candidates steadily; the drift carries the older minimum to now, so the
+// capture time does not fall behind by the windows' age (6 ms at 1.5 ms/s without it). A jump of
+// more than `max_step` (source restarted, clock reset) re-seeds it.
 //
 // GPS time (GPS_INPUT time_week / time_week_ms) needs the wall clock, which the core never reads:
 // the app passes one (host time, Unix time) pair (Bridge::set_wall_clock); GPS time of a host
@@ -23,10 +29,15 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "mocaplink/core/time.hpp"
 
 namespace mocaplink::core {
+
+/// The most drift between a source clock and the host's that the mapper follows: 1 % (a frame
+/// rate 1 % off its nominal). A larger slope is measurement noise or a restart in the making.
+inline constexpr double kMaxSourceDrift = 0.01;
 
 /// Maps source capture times to host capture times (see the file comment).
 class CaptureTimeMapper {
@@ -49,12 +60,24 @@ class CaptureTimeMapper {
   [[nodiscard]] std::optional<Duration> offset() const { return offset_; }
   /// Times the offset was re-seeded after a jump (source restart), for the dashboard.
   [[nodiscard]] std::uint64_t reseeds() const { return reseeds_; }
+  /// Source clock drift against the host's followed now: d(host − source)/d(host), so +0.0015
+  /// for a source whose clock runs 1500 ppm slow. 0 until three windows are complete.
+  [[nodiscard]] double drift() const { return drift_; }
 
  private:
+  struct Minimum {
+    Duration candidate;
+    HostTime seen;  ///< receive time of the frame that gave it
+  };
+  [[nodiscard]] Duration projected(const Minimum& m, HostTime t) const;
+  void fit_drift();
+
   Config config_;
   std::optional<Duration> offset_;
-  std::optional<Duration> current_min_;
-  std::optional<Duration> previous_min_;
+  std::optional<Minimum> current_min_;
+  std::optional<Minimum> previous_min_;
+  std::vector<Minimum> minima_;  // complete windows, oldest first, at most kDriftWindows
+  double drift_ = 0;
   HostTime window_start_{};
   std::optional<HostTime> last_result_;
   std::uint64_t reseeds_ = 0;
