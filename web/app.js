@@ -270,6 +270,12 @@ function renderVehicle(card, v, fromPatch = false) {
   const ts = $('.v-timesync', r);
   ts.textContent = v.timesync.state === 'synced' ? `synced, ${num(v.timesync.rtt_ms, 1, ' ms')} rtt` : v.timesync.state;
   ts.className = `v-timesync ${v.timesync.state}`;
+  const clock = $('.v-clock', r);
+  const c = v.clock;
+  const stamps = c.pose_stamps ? ` · poses stamped at ${c.pose_stamps}` : '';
+  clock.textContent = c.rate_ppm === null ? `${c.verdict}${stamps}` : `${c.verdict}, ${num(c.rate_ppm, 0, ' ppm')}${stamps}`;
+  clock.title = c.text;
+  clock.className = `v-clock ${c.verdict}`;
   const origin = $('.v-origin', r);
   origin.textContent = { not_needed: 'not needed', sending: 'not confirmed', confirmed: 'confirmed', unconfirmed: 'never confirmed (no longer sent)', withheld: 'not sent (PX4 before 1.15)' }[v.origin.state] || v.origin.state;
   origin.className = `v-origin ${v.origin.state}`;

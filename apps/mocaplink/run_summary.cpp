@@ -70,6 +70,7 @@ void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {
        (has("set-up blocked") || has("set-up no answer") || has("the vehicle kept") ||
         has("never confirmed") || has("vehicle says (error)") || has("vehicle says (critical)") ||
         has("vehicle says (alert)") || has("vehicle says (emergency)"))) ||
+      (event.kind == core::BridgeEventKind::vehicle_clock && has("no longer answered")) ||
       (event.kind == core::BridgeEventKind::vehicle_streams &&
        (has("no ATTITUDE") || has("no LOCAL_POSITION_NED") || has("not asked again")));
   const auto level = bad ? spdlog::level::warn : spdlog::level::info;

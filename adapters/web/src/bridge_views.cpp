@@ -305,6 +305,16 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     } else {
       v.timesync.state = TimesyncState::waiting;
     }
+    v.clock.verdict = state.clock.verdict;
+    v.clock.rate_ppm = state.clock.rate_ppm;
+    v.clock.residual_ms = state.clock.residual_ms;
+    if (state.heartbeat && state.heartbeat->autopilot == core::kMavAutopilotPx4) {
+      v.clock.pose_stamps = state.capture_stamps ? "capture" : "arrival";
+    }
+    v.clock.withheld = state.counters.timesync_withheld;
+    v.clock.reset_answers = state.counters.timesync_resets;
+    v.clock.text = core::vehicle_clock_text(
+        state.clock, state.heartbeat ? state.heartbeat->autopilot : std::uint8_t{0});
     v.origin = state.origin;
     v.agreement =
         AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,

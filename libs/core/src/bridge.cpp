@@ -45,6 +45,8 @@ std::string_view to_string(BridgeEventKind kind) {
       return "vehicle_streams";
     case BridgeEventKind::vehicle_setup:
       return "vehicle_setup";
+    case BridgeEventKind::vehicle_clock:
+      return "vehicle_clock";
   }
   return "unknown";
 }
@@ -404,6 +406,10 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
     if (a.settling) text += " (the vehicle booted moments ago: compared once it has settled)";
     out.events.push_back({BridgeEventKind::agreement, now, index, v.spec.name, text});
   }
+  if (reaction.clock_changed) {
+    out.events.push_back({BridgeEventKind::vehicle_clock, now, index, v.spec.name,
+                          vehicle_clock_text(v.state.clock().figures(), v.state.autopilot())});
+  }
 }
 
 void Bridge::stream_events(std::size_t index, std::vector<std::string>& notes, HostTime now,
@@ -419,7 +425,7 @@ DelayInputs Bridge::delay_inputs(std::optional<double> capture_age_ms,
   DelayInputs d;
   d.capture_age_ms = capture_age_ms;
   if (heard.timesync) d.link_rtt_ms = static_cast<double>(heard.timesync->rtt_ns) / 1e6;
-  d.vehicle_timesync = heard.counters.timesync_requests > 0;
+  d.vehicle_timesync = heard.capture_stamps;
   return d;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 
@@ -64,6 +65,35 @@ std::string_view to_string(AgreementVerdict verdict) {
       return "disagree";
   }
   return "unknown";
+}
+
+std::string vehicle_clock_text(const VehicleClockFigures& f, std::uint8_t autopilot) {
+  const bool ardupilot = autopilot == kMavAutopilotArdupilot;
+  char figures[96] = "";
+  if (f.rate_ppm && f.residual_ms) {
+    std::snprintf(figures, sizeof figures, "%+.0f ppm against this host's, %.1f ms off a line",
+                  *f.rate_ppm, *f.residual_ms);
+  }
+  switch (f.verdict) {
+    case VehicleClockVerdict::measuring:
+      return "clock measured afresh: the vehicle restarted";
+    case VehicleClockVerdict::steady:
+      return std::string("clock steady (") + figures + ")" +
+             (ardupilot ? ""
+                        : ": PX4 places poses at their capture time once its time sync "
+                          "has converged");
+    case VehicleClockVerdict::unsteady:
+      if (ardupilot) {
+        return std::string("clock unsteady (") + figures +
+               "): ArduPilot's jitter correction never places a pose after its arrival; nothing "
+               "changes";
+      }
+      return std::string("clock unsteady (") + figures +
+             ", a simulator's lockstep clock?): PX4's time sync cannot follow it and would place "
+             "poses in its future, so its TIMESYNC requests are no longer answered and it stamps "
+             "poses on arrival; set EKF2_EV_DELAY as the set-up list recommends";
+  }
+  return {};
 }
 
 double wrap_deg_180(double degrees) {
@@ -149,9 +179,43 @@ void VehicleState::on_timesync(const ReceivedMessage& message, HostTime now,
   if (ts.tc1 == 0) {
     // A request (TIMESYNC v2): answer at once. Requests addressed to another system are not ours.
     if (ts.target_system != 0 && ts.target_system != config_.system_id) return;
+    std::int64_t tc1_ns = now.time_since_epoch().count();
+    if (message.sysid == config_.system_id && ts.ts1 > 0) {
+      // The vehicle's own request: its ts1 measures its clock, and the clock decides the answer.
+      const std::uint64_t restarts = clock_.figures().restarts;
+      if (clock_.on_request(ts.ts1, now)) reaction.clock_changed = true;
+      if (clock_.figures().restarts != restarts) {
+        answered_this_boot_ = 0;  // a new boot: PX4's filter starts from nothing
+        resets_this_boot_ = 0;
+      }
+      const bool ardupilot = heartbeat_ && heartbeat_->autopilot == kMavAutopilotArdupilot;
+      if (!ardupilot) {
+        switch (clock_.verdict()) {
+          case VehicleClockVerdict::steady:
+            break;
+          case VehicleClockVerdict::measuring:
+            if (answered_this_boot_ >= kTimesyncMeasuringAnswers) {
+              ++counters_.timesync_withheld;
+              return;
+            }
+            break;
+          case VehicleClockVerdict::unsteady:
+            if (resets_this_boot_ >= kTimesyncResetReplies) {
+              ++counters_.timesync_withheld;
+              return;
+            }
+            ++resets_this_boot_;
+            ++counters_.timesync_resets;
+            // A second off, on the side that keeps tc1 positive (PX4 takes tc1 > 0 only).
+            tc1_ns += tc1_ns > kTimesyncResetOffset.count() ? -kTimesyncResetOffset.count()
+                                                            : kTimesyncResetOffset.count();
+            break;
+        }
+      }
+      ++answered_this_boot_;
+    }
     ++counters_.timesync_requests;
-    reaction.timesync_reply =
-        build_timesync_reply(ts, message.sysid, message.compid, now.time_since_epoch().count());
+    reaction.timesync_reply = build_timesync_reply(ts, message.sysid, message.compid, tc1_ns);
     return;
   }
   // A response: ours only if ts1 is one of our pending requests.
@@ -268,8 +332,17 @@ VehicleReaction VehicleState::on_tick(HostTime now) {
   return reaction;
 }
 
+bool VehicleState::capture_stamps() const {
+  const bool px4 = heartbeat_ && heartbeat_->autopilot == kMavAutopilotPx4;
+  return px4 && clock_.verdict() == VehicleClockVerdict::steady && answered_this_boot_ > 0;
+}
+
 VehicleReaction VehicleState::on_reboot() {
   VehicleReaction reaction;
+  if (clock_.verdict() != VehicleClockVerdict::measuring) reaction.clock_changed = true;
+  clock_.restart();
+  answered_this_boot_ = 0;
+  resets_this_boot_ = 0;
   reported_origin_.reset();
   origin_since_.reset();  // a new 30 s from the next live heartbeat
   if (config_.origin && origin_ != OriginState::sending) {
@@ -298,6 +371,8 @@ VehicleSnapshot VehicleState::snapshot() const {
   s.origin = origin_;
   s.reported_origin = reported_origin_;
   s.timesync = timesync_;
+  s.clock = clock_.figures();
+  s.capture_stamps = capture_stamps();
   s.agreement = agreement_;
   s.counters = counters_;
   return s;

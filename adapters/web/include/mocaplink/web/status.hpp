@@ -117,6 +117,20 @@ struct TimesyncView {
   std::optional<double> rtt_ms{};     ///< last round trip
 };
 
+/// The vehicle's clock against the host's (core::VehicleClockMonitor) and what PX4 does with our
+/// poses' time stamps because of it.
+struct ClockView {
+  core::VehicleClockVerdict verdict = core::VehicleClockVerdict::measuring;
+  std::optional<double> rate_ppm{};     ///< vehicle rate − host rate, ppm
+  std::optional<double> residual_ms{};  ///< largest window minimum off the fitted line
+  /// PX4 only: "capture" (its time sync converts our capture times) or "arrival" (it stamps
+  /// poses when they arrive: its clock is unsteady or still being measured); nullopt otherwise.
+  std::optional<std::string> pose_stamps{};
+  std::uint64_t withheld = 0;       ///< its TIMESYNC requests not answered
+  std::uint64_t reset_answers = 0;  ///< answered a second off to reset PX4's filter
+  std::string text;                 ///< core::vehicle_clock_text
+};
+
 struct AgreementView {
   AgreementVerdict verdict = AgreementVerdict::unknown;
   std::optional<double> yaw_offset_deg{};  ///< vehicle yaw − mocap yaw, wrapped to (−180, 180]
@@ -225,6 +239,7 @@ struct VehicleView {
   double send_rate_hz = 0.0;
   std::optional<HeartbeatView> heartbeat{};  ///< null until the vehicle's first HEARTBEAT
   TimesyncView timesync{};
+  ClockView clock{};
   OriginState origin = OriginState::not_needed;
   AgreementView agreement{};
   /// What the agreement check asked of the vehicle, per message it needs ("ATTITUDE",

@@ -129,6 +129,9 @@ enum class BridgeEventKind : std::uint8_t {
   /// the vehicle's set-up (vehicle_setup.hpp): its autopilot, the check list's verdict, writes
   /// and their confirmation, its STATUSTEXT warnings
   vehicle_setup,
+  /// the vehicle's clock against the host's (vehicle_clock.hpp): steady, or unsteady and what
+  /// mocaplink does about it; a few per vehicle boot
+  vehicle_clock,
 };
 [[nodiscard]] std::string_view to_string(BridgeEventKind kind);
 

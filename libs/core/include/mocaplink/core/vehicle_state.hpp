@@ -5,8 +5,20 @@
 //               heartbeat state silent after kVehicleSilentAfter without one. Only heartbeats
 //               from the vehicle's system id that are not a GCS (type 6) or a non-autopilot
 //               component (autopilot 8 INVALID) count.
-//   TIMESYNC    requests (tc1 == 0) from anyone → answered at once (the caller sends the reply);
-//               responses to our own requests (ts1 equal to one we sent) → RTT and clock offset.
+//   TIMESYNC    requests (tc1 == 0) from anyone → answered at once (the caller sends the reply),
+//               except what the vehicle's own clock forbids (below); responses to our own requests
+//               (ts1 equal to one we sent) → RTT and clock offset.
+//   clock       the vehicle's own requests measure its clock against the host's
+//   (VehicleClockMonitor).
+//               A PX4 (or a vehicle not yet heard) is answered while that clock is steady, and
+//               while it is still being measured for at most kTimesyncMeasuringAnswers answers
+//               (PX4 needs 500 to converge, so it cannot converge on a clock not yet judged). Once
+//               the clock is unsteady its requests are no longer answered, so PX4 never converges
+//               and stamps every pose on arrival, which is never in its future; the first
+//               kTimesyncResetReplies answers after that verdict are a second off on purpose,
+//               which makes a PX4 that had already converged reset its filter (it resets after 5
+//               consecutive samples over 100 ms off, protocols/autopilots.md §3.10). ArduPilot
+//               does not use TIMESYNC for poses: it is always answered.
 //   origin      not_needed → (sending ⇄ mismatch) → confirmed | conflict. While sending, the
 //               Sender emits SET_GPS_GLOBAL_ORIGIN ~1 Hz. A GPS_GLOBAL_ORIGIN from the vehicle
 //               matching ours (|Δlat|, |Δlon| ≤ 1e-7 deg, |Δalt| ≤ 1 cm) confirms it: sending
@@ -44,11 +56,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "mocaplink/core/body_estimate.hpp"
 #include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/time.hpp"
+#include "mocaplink/core/vehicle_clock.hpp"
 #include "mocaplink/mavlink/messages.hpp"
 
 namespace mocaplink::core {
@@ -62,6 +76,14 @@ inline constexpr Duration kOriginGiveUpAfter = std::chrono::seconds(30);
 /// MAV_AUTOPILOT_ARDUPILOTMEGA and MAV_AUTOPILOT_PX4.
 inline constexpr std::uint8_t kMavAutopilotArdupilot = 3;
 inline constexpr std::uint8_t kMavAutopilotPx4 = 12;
+/// While the vehicle's clock is measured, at most this many of its TIMESYNC requests are answered:
+/// below the 500 accepted samples after which PX4's filter converges (autopilots.md §3.10).
+inline constexpr std::uint64_t kTimesyncMeasuringAnswers = 400;
+/// Answers sent a second off once a PX4's clock is unsteady: PX4 resets its filter after more than
+/// 5 consecutive samples (with a round trip under 10 ms) over 100 ms from its estimate; 20 leave
+/// room for requests whose round trip is too long to count.
+inline constexpr std::uint64_t kTimesyncResetReplies = 20;
+inline constexpr Duration kTimesyncResetOffset = std::chrono::seconds(1);
 /// MAV_MODE_FLAG_SAFETY_ARMED.
 inline constexpr std::uint8_t kMavModeFlagSafetyArmed = 128;
 
@@ -153,7 +175,9 @@ struct VehicleCounters {
   std::uint64_t messages = 0;            ///< every message offered
   std::uint64_t from_other_systems = 0;  ///< sysid ≠ the vehicle's (ignored, TIMESYNC aside)
   std::uint64_t heartbeats = 0;
-  std::uint64_t timesync_requests = 0;   ///< answered
+  std::uint64_t timesync_requests = 0;   ///< answered (reset answers included)
+  std::uint64_t timesync_withheld = 0;   ///< the vehicle's own, not answered (its clock)
+  std::uint64_t timesync_resets = 0;     ///< answered a second off to reset PX4's filter
   std::uint64_t timesync_responses = 0;  ///< to our requests
   std::uint64_t origin_reports = 0;      ///< GPS_GLOBAL_ORIGIN received
   std::uint64_t origin_mismatches = 0;
@@ -167,6 +191,10 @@ struct VehicleSnapshot {
   OriginState origin = OriginState::not_needed;
   std::optional<GeodeticPosition> reported_origin;  ///< the vehicle's latest GPS_GLOBAL_ORIGIN
   std::optional<TimesyncEstimate> timesync;
+  VehicleClockFigures clock;
+  /// The vehicle places our poses at their capture time: it is a PX4 that we answer on a steady
+  /// clock. False: it stamps them on arrival (EKF2_EV_DELAY covers the whole delay).
+  bool capture_stamps = false;
   Agreement agreement;
   VehicleCounters counters;
 };
@@ -177,6 +205,7 @@ struct VehicleReaction {
   bool origin_changed = false;                      ///< origin state changed (event)
   bool link_changed = false;                        ///< heartbeat state changed (event)
   bool agreement_changed = false;                   ///< verdict changed (event)
+  bool clock_changed = false;                       ///< VehicleClockMonitor verdict changed (event)
 };
 
 class VehicleState {
@@ -194,7 +223,8 @@ class VehicleState {
 
   /// The vehicle restarted (VehicleStreams saw its boot clock go back): the origin it had is gone
   /// with its estimator, so ours is sent again, whether it was confirmed, in conflict (the remedy
-  /// the conflict advises) or given up; the origin it reported is forgotten (origin_changed).
+  /// the conflict advises) or given up; the origin it reported is forgotten (origin_changed). Its
+  /// clock is measured afresh, and its time sync starts from nothing (clock_changed).
   VehicleReaction on_reboot();
 
   /// The origin must not go to this vehicle this boot (setup_rules.hpp origin_gate): a `sending`
@@ -204,6 +234,9 @@ class VehicleState {
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
   void on_timesync_request_sent(std::int64_t ts1_ns);
 
+  /// Whether the vehicle places our poses at their capture time (VehicleSnapshot::capture_stamps).
+  [[nodiscard]] bool capture_stamps() const;
+  [[nodiscard]] const VehicleClockMonitor& clock() const { return clock_; }
   /// Whether the Sender should keep sending SET_GPS_GLOBAL_ORIGIN.
   [[nodiscard]] bool wants_origin() const { return origin_ == OriginState::sending; }
   [[nodiscard]] OriginState origin_state() const { return origin_; }
@@ -234,6 +267,9 @@ class VehicleState {
   std::optional<GeodeticPosition> reported_origin_;
   std::optional<HostTime> origin_since_;  ///< sending to a vehicle whose heartbeat is alive since
   std::optional<TimesyncEstimate> timesync_;
+  VehicleClockMonitor clock_;
+  std::uint64_t answered_this_boot_ = 0;  // of the vehicle's own requests
+  std::uint64_t resets_this_boot_ = 0;
   std::array<std::int64_t, 8> pending_requests_{};
   std::size_t pending_next_ = 0;
   // Agreement inputs: latest vehicle yaw / position with the mocap estimate seen with each.
@@ -242,6 +278,11 @@ class VehicleState {
   Agreement agreement_;
   VehicleCounters counters_;
 };
+
+/// A sentence for the log and the dashboard on a vehicle's clock verdict and what follows from it
+/// for its poses' time stamps ("clock steady (+12 ppm ...)"); `autopilot` is its MAV_AUTOPILOT.
+[[nodiscard]] std::string vehicle_clock_text(const VehicleClockFigures& clock,
+                                             std::uint8_t autopilot);
 
 /// Wraps an angle in degrees to (−180, 180].
 [[nodiscard]] double wrap_deg_180(double degrees);
