@@ -132,6 +132,7 @@ std::vector<web::GcsEndpointView> GroundStations::views(std::size_t slot) const 
     v.frames_from_gcs = r.frames_from_gcs;
     v.dropped = c.dropped_backlog + c.dropped_down + c.send_errors;
     v.no_route = r.no_route;
+    v.timesync_answers = r.timesync_answers;
     v.bad_frames = c.parser.bad_crc + c.parser.unknown_incompat + c.parser.truncated_tail;
     out.push_back(std::move(v));
   }

@@ -122,6 +122,7 @@ void to_json(nlohmann::json& j, const GcsEndpointView& e) {
                      {"frames_from_gcs", e.frames_from_gcs},
                      {"dropped", e.dropped},
                      {"no_route", e.no_route},
+                     {"timesync_answers", e.timesync_answers},
                      {"bad_frames", e.bad_frames}};
 }
 

@@ -15,6 +15,14 @@ std::string peer_name(std::uint8_t sysid, std::uint8_t compid) {
 
 RouteInfo route_info(const mavlink::FrameView& frame) {
   RouteInfo info{frame.sysid, frame.compid};
+  // TIMESYNC's payload starts with tc1 (int64); MAVLink 2 drops trailing zero bytes, so an answer
+  // is a frame with any non-zero byte among the first eight on the wire.
+  constexpr std::uint32_t kTimesync = 111;
+  if (frame.msgid == kTimesync) {
+    const auto tc1 = frame.payload.first(std::min<std::size_t>(8, frame.payload.size()));
+    info.timesync_answer =
+        std::any_of(tc1.begin(), tc1.end(), [](std::uint8_t b) { return b != 0; });
+  }
   if (const auto target = mavlink::message_target(frame)) {
     info.has_target = true;
     info.target_system = target->system;
@@ -77,6 +85,10 @@ void GcsRouter::from_gcs(Endpoint endpoint, const RouteInfo& frame, HostTime now
       notes.push_back("ground station " + peer_name(frame.sysid, frame.compid) + " on " +
                       endpoint_name + " connected");
     }
+  }
+  if (frame.timesync_answer) {
+    ++s.counters.timesync_answers;  // never to a vehicle (header comment)
+    return;
   }
   const std::size_t before = out.size();
   for (const auto& a : s.vehicles) {

@@ -107,5 +107,41 @@ TEST_F(GcsRouterTest, DetachedVehiclesGetNothing) {
   EXPECT_THAT(router.slots_of(0), ElementsAre(1));
 }
 
+// A ground station's TIMESYNC answer never reaches a vehicle (PX4 would take it for the answer to
+// its own request); its requests pass. The payloads as the wire carries them (common.xml: tc1
+// int64, ts1 int64, target_system, target_component; MAVLink 2 drops trailing zero bytes).
+TEST_F(GcsRouterTest, AGroundStationsTimesyncAnswerReachesNoVehicle) {
+  const auto timesync = [](std::vector<std::uint8_t> payload) {
+    static std::vector<std::uint8_t> keep;
+    keep = std::move(payload);
+    mavlink::FrameView f;
+    f.sysid = 255;
+    f.compid = 190;
+    f.msgid = 111;
+    f.len = static_cast<std::uint8_t>(keep.size());
+    f.payload = keep;
+    return route_info(f);
+  };
+  // A request: tc1 0, ts1 = 0x0102030405060708, no target.
+  const RouteInfo request = timesync({0, 0, 0, 0, 0, 0, 0, 0, 8, 7, 6, 5, 4, 3, 2, 1});
+  EXPECT_FALSE(request.timesync_answer);
+  EXPECT_THAT(gcs(0, request), ElementsAre(0, 1));
+  // An answer to vehicle 1's request: tc1 = 256 (one non-zero byte, the second), ts1, target 1/1.
+  const RouteInfo answer = timesync({0, 1, 0, 0, 0, 0, 0, 0, 8, 7, 6, 5, 4, 3, 2, 1, 1, 1});
+  EXPECT_TRUE(answer.timesync_answer);
+  EXPECT_THAT(gcs(0, answer), IsEmpty());
+  // An answer whose ts1 and targets are zero: the wire keeps only tc1's bytes up to the last
+  // non-zero one.
+  EXPECT_THAT(gcs(0, timesync({5})), IsEmpty());
+  EXPECT_EQ(router.counters(0).timesync_answers, 2u);
+  EXPECT_EQ(router.counters(0).no_route, 0u);
+  // Any other message with the same bytes routes as before.
+  mavlink::FrameView other;
+  other.msgid = 0;
+  const std::vector<std::uint8_t> bytes{5};
+  other.payload = bytes;
+  EXPECT_FALSE(route_info(other).timesync_answer);
+}
+
 }  // namespace
 }  // namespace mocaplink::core

@@ -200,8 +200,10 @@ struct GcsEndpointView {
   std::size_t peers = 0;  ///< ground stations (system/component ids) heard within 5 s
   std::uint64_t frames_to_gcs = 0;    ///< vehicle frames sent to it, cumulative
   std::uint64_t frames_from_gcs = 0;  ///< frames its ground stations sent, cumulative
-  std::uint64_t dropped = 0;     ///< frames toward it dropped (its socket down or backlog full)
-  std::uint64_t no_route = 0;    ///< its frames addressed to no vehicle behind it, dropped
+  std::uint64_t dropped = 0;   ///< frames toward it dropped (its socket down or backlog full)
+  std::uint64_t no_route = 0;  ///< its frames addressed to no vehicle behind it, dropped
+  /// its ground stations' TIMESYNC answers, never passed to a vehicle (core::GcsRouter)
+  std::uint64_t timesync_answers = 0;
   std::uint64_t bad_frames = 0;  ///< bad CRC / flags / cut-off frames from it, dropped
 };
 

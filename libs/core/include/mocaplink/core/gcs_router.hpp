@@ -10,7 +10,13 @@
 //   * a targeted frame from a vehicle goes to the endpoints where that system (and component,
 //     unless the target component is 0) has been heard. So the answers to mocaplink's own
 //     requests — addressed to the vehicle's system id and mocaplink's component — stay with
-//     mocaplink, and a ground station's answers reach only it.
+//     mocaplink, and a ground station's answers reach only it;
+//   * one exception to "unchanged, everywhere": a ground station's TIMESYNC answer (tc1 ≠ 0)
+//     goes to no vehicle (counted: timesync_answers). PX4 takes any TIMESYNC with tc1 > 0 on its
+//     link as the answer to its own request (protocols/autopilots.md §3.10), so a ground station
+//     that answers (MAVSDK, mavros do) would move PX4's clock offset onto its own clock and
+//     misplace every pose mocaplink stamps, or undo mocaplink's withholding on an unsteady clock
+//     (vehicle_clock.hpp). Its requests (tc1 = 0) pass: the vehicle's answers are addressed back.
 // A ground-station peer is a (system id, component id) heard on an endpoint. It is "connected"
 // while heard within kPeerTimeout; it stays known for routing after that, as in mavlink-router.
 // At most kMaxPeers peers are kept per endpoint (memory stays bounded whatever is sent); frames
@@ -38,6 +44,7 @@ struct RouteInfo {
   bool has_target = false;
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
+  bool timesync_answer = false;  ///< TIMESYNC (111) with tc1 ≠ 0 (an answer, not a request)
 };
 
 /// A frame's sender and, where its message has one, its target (mavlink::message_target).
@@ -59,9 +66,10 @@ class GcsRouter {
     bool connected = false;
   };
   struct EndpointCounters {
-    std::uint64_t frames_to_gcs = 0;    ///< vehicle frames routed to this endpoint
-    std::uint64_t frames_from_gcs = 0;  ///< frames this endpoint's ground stations sent
-    std::uint64_t no_route = 0;         ///< targeted at no vehicle behind this endpoint: dropped
+    std::uint64_t frames_to_gcs = 0;     ///< vehicle frames routed to this endpoint
+    std::uint64_t frames_from_gcs = 0;   ///< frames this endpoint's ground stations sent
+    std::uint64_t no_route = 0;          ///< targeted at no vehicle behind this endpoint: dropped
+    std::uint64_t timesync_answers = 0;  ///< TIMESYNC answers of its ground stations: dropped
   };
 
   /// Endpoint `endpoint` serves the vehicle in `slot`, whose system id is `vehicle_sysid`.
