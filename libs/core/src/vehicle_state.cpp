@@ -334,7 +334,8 @@ VehicleReaction VehicleState::on_tick(HostTime now) {
 
 bool VehicleState::capture_stamps() const {
   const bool px4 = heartbeat_ && heartbeat_->autopilot == kMavAutopilotPx4;
-  return px4 && clock_.verdict() == VehicleClockVerdict::steady && answered_this_boot_ > 0;
+  return px4 && clock_.verdict() == VehicleClockVerdict::steady &&
+         answered_this_boot_ >= kPx4TimesyncConvergence;
 }
 
 VehicleReaction VehicleState::on_reboot() {

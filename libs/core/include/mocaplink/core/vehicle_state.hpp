@@ -79,6 +79,9 @@ inline constexpr std::uint8_t kMavAutopilotPx4 = 12;
 /// While the vehicle's clock is measured, at most this many of its TIMESYNC requests are answered:
 /// below the 500 accepted samples after which PX4's filter converges (autopilots.md §3.10).
 inline constexpr std::uint64_t kTimesyncMeasuringAnswers = 400;
+/// PX4's time sync converges after this many accepted answers (CONVERGENCE_WINDOW, §3.10): until
+/// then it stamps poses on arrival, whatever we answer.
+inline constexpr std::uint64_t kPx4TimesyncConvergence = 500;
 /// Answers sent a second off once a PX4's clock is unsteady: PX4 resets its filter after more than
 /// 5 consecutive samples (with a round trip under 10 ms) over 100 ms from its estimate; 20 leave
 /// room for requests whose round trip is too long to count.
@@ -193,7 +196,9 @@ struct VehicleSnapshot {
   std::optional<TimesyncEstimate> timesync;
   VehicleClockFigures clock;
   /// The vehicle places our poses at their capture time: it is a PX4 that we answer on a steady
-  /// clock. False: it stamps them on arrival (EKF2_EV_DELAY covers the whole delay).
+  /// clock, and have answered kPx4TimesyncConvergence times this boot (so it may have converged:
+  /// a round trip over 10 ms can still keep it from it). False: it stamps them on arrival
+  /// (EKF2_EV_DELAY covers the whole delay).
   bool capture_stamps = false;
   Agreement agreement;
   VehicleCounters counters;
