@@ -299,6 +299,21 @@ TEST(VehicleClockMonitor, VerdictAfterFourWindowsRateAndResidual) {
   EXPECT_EQ(c.figures().requests, 301U);
 }
 
+// A crystal 80 ppm fast on a host whose CLOCK_MONOTONIC NTP slews by the kernel's 500 ppm: steady.
+// 1.5 % slow (SITL's lockstep clock on an idle machine): unsteady, however straight its line.
+TEST(VehicleClockMonitor, SlewedHostIsSteadyASimulatorsRateIsNot) {
+  for (const double rate : {1.0 + 580e-6, 1.0 - 580e-6, 0.985}) {
+    VehicleClockMonitor c;
+    for (std::int64_t ms = 0; ms <= 30'000; ms += 100) {
+      const auto ts1 = static_cast<std::int64_t>(static_cast<double>(ms) * 1e6 * rate);
+      c.on_request(ts1, HostTime{milliseconds(ms + 1)});
+    }
+    EXPECT_EQ(c.verdict(),
+              rate > 0.99 ? VehicleClockVerdict::steady : VehicleClockVerdict::unsteady)
+        << rate;
+  }
+}
+
 TEST(VehicleClockMonitor, MinimumOfEachWindowIgnoresDelays) {
   VehicleClockMonitor c;
   std::uint32_t rng = 3;
