@@ -46,13 +46,11 @@ HostTime CaptureTimeMapper::on_frame(SourceTime capture, HostTime received,
     // First frame, or the source clock jumped (restart): start again from this frame.
     if (offset_) ++reseeds_;
     current_min_ = sample;
-    previous_min_.reset();
     minima_.clear();
     drift_ = 0;
     window_start_ = received;
     last_result_.reset();
   } else if (received - window_start_ >= config_.window) {
-    previous_min_ = current_min_;
     minima_.push_back(*current_min_);
     if (minima_.size() > kDriftWindows) minima_.erase(minima_.begin());
     fit_drift();
@@ -62,7 +60,8 @@ HostTime CaptureTimeMapper::on_frame(SourceTime capture, HostTime received,
     current_min_ = sample;
   }
   offset_ = projected(*current_min_, received);
-  if (previous_min_) offset_ = std::min(*offset_, projected(*previous_min_, received));
+  // The previous window's minimum is the latest complete one.
+  if (!minima_.empty()) offset_ = std::min(*offset_, projected(minima_.back(), received));
 
   HostTime result = HostTime{capture.time_since_epoch() + *offset_};
   // Never in the future (offset ≤ this frame's candidate guarantees it up to a dropped latency),

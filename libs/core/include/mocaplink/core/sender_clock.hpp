@@ -75,7 +75,6 @@ class CaptureTimeMapper {
   Config config_;
   std::optional<Duration> offset_;
   std::optional<Minimum> current_min_;
-  std::optional<Minimum> previous_min_;
   std::vector<Minimum> minima_;  // complete windows, oldest first, at most kDriftWindows
   double drift_ = 0;
   HostTime window_start_{};
