@@ -1,7 +1,6 @@
 #include "mocaplink/core/vehicle_clock.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
 #include "mocaplink/core/line_fit.hpp"
@@ -22,11 +21,7 @@ std::string_view to_string(VehicleClockVerdict verdict) {
 
 bool VehicleClockMonitor::on_request(std::int64_t ts1_ns, HostTime arrival) {
   const VehicleClockVerdict before = figures_.verdict;
-  if (last_ts1_ns_ && ts1_ns < *last_ts1_ns_ - kVehicleClockRestartStep.count()) {
-    const std::uint64_t restarts = figures_.restarts + 1;
-    restart();
-    figures_.restarts = restarts;
-  }
+  if (last_ts1_ns_ && ts1_ns < *last_ts1_ns_ - kVehicleClockRestartStep.count()) restart();
   // A request reordered on the way (ts1 a little behind the latest) is still a fair sample.
   last_ts1_ns_ = last_ts1_ns_ ? std::max(*last_ts1_ns_, ts1_ns) : ts1_ns;
   ++figures_.requests;
@@ -43,7 +38,7 @@ bool VehicleClockMonitor::on_request(std::int64_t ts1_ns, HostTime arrival) {
 }
 
 void VehicleClockMonitor::restart() {
-  const std::uint64_t restarts = figures_.restarts;
+  const std::uint64_t restarts = figures_.restarts + 1;
   figures_ = VehicleClockFigures{};
   figures_.restarts = restarts;
   minima_.clear();
@@ -77,8 +72,9 @@ void VehicleClockMonitor::fit() {
   if (!line) return;
   const double b = line->slope;
   double residual_ns = 0;
-  for (const LinePoint& p : points)
+  for (const LinePoint& p : points) {
     residual_ns = std::max(residual_ns, std::abs(p.y - line->at(p.x)));
+  }
   figures_.rate_ppm = -b / 1e3;
   figures_.residual_ms = residual_ns / 1e6;
   const bool steady = std::abs(*figures_.rate_ppm) <= config_.max_rate_ppm &&

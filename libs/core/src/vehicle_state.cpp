@@ -76,7 +76,8 @@ std::string vehicle_clock_text(const VehicleClockFigures& f, std::uint8_t autopi
   }
   switch (f.verdict) {
     case VehicleClockVerdict::measuring:
-      return "clock measured afresh: the vehicle restarted";
+      return f.restarts > 0 ? "clock measured afresh: the vehicle restarted"
+                            : "clock being measured: a verdict after 20 s of its TIMESYNC requests";
     case VehicleClockVerdict::steady:
       return std::string("clock steady (") + figures + ")" +
              (ardupilot ? ""
@@ -182,37 +183,12 @@ void VehicleState::on_timesync(const ReceivedMessage& message, HostTime now,
     std::int64_t tc1_ns = now.time_since_epoch().count();
     if (message.sysid == config_.system_id && ts.ts1 > 0) {
       // The vehicle's own request: its ts1 measures its clock, and the clock decides the answer.
-      const std::uint64_t restarts = clock_.figures().restarts;
-      if (clock_.on_request(ts.ts1, now)) reaction.clock_changed = true;
-      if (clock_.figures().restarts != restarts) {
-        answered_this_boot_ = 0;  // a new boot: PX4's filter starts from nothing
-        resets_this_boot_ = 0;
+      const std::optional<std::int64_t> answer = answer_own_request(ts.ts1, now, reaction);
+      if (!answer) {
+        ++counters_.timesync_withheld;
+        return;
       }
-      const bool ardupilot = heartbeat_ && heartbeat_->autopilot == kMavAutopilotArdupilot;
-      if (!ardupilot) {
-        switch (clock_.verdict()) {
-          case VehicleClockVerdict::steady:
-            break;
-          case VehicleClockVerdict::measuring:
-            if (answered_this_boot_ >= kTimesyncMeasuringAnswers) {
-              ++counters_.timesync_withheld;
-              return;
-            }
-            break;
-          case VehicleClockVerdict::unsteady:
-            if (resets_this_boot_ >= kTimesyncResetReplies) {
-              ++counters_.timesync_withheld;
-              return;
-            }
-            ++resets_this_boot_;
-            ++counters_.timesync_resets;
-            // A second off, on the side that keeps tc1 positive (PX4 takes tc1 > 0 only).
-            tc1_ns += tc1_ns > kTimesyncResetOffset.count() ? -kTimesyncResetOffset.count()
-                                                            : kTimesyncResetOffset.count();
-            break;
-        }
-      }
-      ++answered_this_boot_;
+      tc1_ns = *answer;
     }
     ++counters_.timesync_requests;
     reaction.timesync_reply = build_timesync_reply(ts, message.sysid, message.compid, tc1_ns);
@@ -332,6 +308,34 @@ VehicleReaction VehicleState::on_tick(HostTime now) {
   return reaction;
 }
 
+std::optional<std::int64_t> VehicleState::answer_own_request(std::int64_t ts1_ns, HostTime now,
+                                                             VehicleReaction& reaction) {
+  const std::uint64_t restarts = clock_.figures().restarts;
+  if (clock_.on_request(ts1_ns, now)) reaction.clock_changed = true;
+  if (clock_.figures().restarts != restarts) forget_time_sync();  // its ts1 went back: a new boot
+  std::int64_t tc1_ns = now.time_since_epoch().count();
+  const bool ardupilot = heartbeat_ && heartbeat_->autopilot == kMavAutopilotArdupilot;
+  if (!ardupilot && clock_.verdict() == VehicleClockVerdict::measuring &&
+      answered_this_boot_ >= kTimesyncMeasuringAnswers) {
+    return std::nullopt;
+  }
+  if (!ardupilot && clock_.verdict() == VehicleClockVerdict::unsteady) {
+    if (resets_this_boot_ >= kTimesyncResetReplies) return std::nullopt;
+    ++resets_this_boot_;
+    ++counters_.timesync_resets;
+    // A second off, on the side that keeps tc1 positive (PX4 takes tc1 > 0 only).
+    tc1_ns += tc1_ns > kTimesyncResetOffset.count() ? -kTimesyncResetOffset.count()
+                                                    : kTimesyncResetOffset.count();
+  }
+  ++answered_this_boot_;
+  return tc1_ns;
+}
+
+void VehicleState::forget_time_sync() {
+  answered_this_boot_ = 0;  // PX4's filter starts from nothing with the new boot
+  resets_this_boot_ = 0;
+}
+
 bool VehicleState::capture_stamps() const {
   const bool px4 = heartbeat_ && heartbeat_->autopilot == kMavAutopilotPx4;
   return px4 && clock_.verdict() == VehicleClockVerdict::steady &&
@@ -342,8 +346,7 @@ VehicleReaction VehicleState::on_reboot() {
   VehicleReaction reaction;
   if (clock_.verdict() != VehicleClockVerdict::measuring) reaction.clock_changed = true;
   clock_.restart();
-  answered_this_boot_ = 0;
-  resets_this_boot_ = 0;
+  forget_time_sync();
   reported_origin_.reset();
   origin_since_.reset();  // a new 30 s from the next live heartbeat
   if (config_.origin && origin_ != OriginState::sending) {

@@ -346,6 +346,8 @@ TEST(VehicleClockMonitor, AStallIsUnsteadyAndStaysSoUntilARestart) {
   EXPECT_EQ(c.verdict(), VehicleClockVerdict::measuring);
   EXPECT_EQ(c.figures().restarts, 1U);
   EXPECT_EQ(c.figures().requests, 1U);
+  EXPECT_EQ(vehicle_clock_text(c.figures(), kMavAutopilotPx4),
+            "clock measured afresh: the vehicle restarted");
 }
 
 TEST(VehicleClockMonitor, ReorderedRequestIsNoRestart) {
@@ -367,6 +369,8 @@ TEST(VehicleClockMonitor, MeasuringAnswersAreCapped) {
     if (r.timesync_reply) ++answered;
   }
   EXPECT_EQ(v.clock().verdict(), VehicleClockVerdict::measuring);
+  EXPECT_EQ(vehicle_clock_text(v.clock().figures(), kMavAutopilotPx4),
+            "clock being measured: a verdict after 20 s of its TIMESYNC requests");
   EXPECT_EQ(answered, kTimesyncMeasuringAnswers);
   EXPECT_EQ(v.snapshot().counters.timesync_withheld, 1000 - kTimesyncMeasuringAnswers);
   // Somebody else's request (a ground station's) is answered as before, and measures nothing.

@@ -67,7 +67,7 @@ struct VehicleClockFigures {
   std::optional<double> residual_ms;  ///< largest distance of a window minimum from the line
   std::size_t windows = 0;            ///< complete windows in the fit
   std::uint64_t requests = 0;         ///< requests measured since the vehicle's clock started
-  std::uint64_t restarts = 0;         ///< reboots seen (ts1 went back)
+  std::uint64_t restarts = 0;         ///< reboots seen (ts1 went back, or restart())
 };
 
 class VehicleClockMonitor {
@@ -78,7 +78,8 @@ class VehicleClockMonitor {
   /// A TIMESYNC request stamped `ts1_ns` on the vehicle's clock arrived at `arrival`. Returns
   /// true when the verdict changed (a restart back to measuring included).
   bool on_request(std::int64_t ts1_ns, HostTime arrival);
-  /// The vehicle rebooted (seen elsewhere: its boot clock went back): measure afresh.
+  /// The vehicle rebooted (its ts1 went back, or seen elsewhere: its boot clock went back):
+  /// measure afresh, counted in `restarts`.
   void restart();
 
   [[nodiscard]] VehicleClockVerdict verdict() const noexcept { return figures_.verdict; }

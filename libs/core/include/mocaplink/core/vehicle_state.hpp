@@ -8,17 +8,17 @@
 //   TIMESYNC    requests (tc1 == 0) from anyone → answered at once (the caller sends the reply),
 //               except what the vehicle's own clock forbids (below); responses to our own requests
 //               (ts1 equal to one we sent) → RTT and clock offset.
-//   clock       the vehicle's own requests measure its clock against the host's
-//   (VehicleClockMonitor).
-//               A PX4 (or a vehicle not yet heard) is answered while that clock is steady, and
-//               while it is still being measured for at most kTimesyncMeasuringAnswers answers
-//               (PX4 needs 500 to converge, so it cannot converge on a clock not yet judged). Once
-//               the clock is unsteady its requests are no longer answered, so PX4 never converges
-//               and stamps every pose on arrival, which is never in its future; the first
-//               kTimesyncResetReplies answers after that verdict are a second off on purpose,
-//               which makes a PX4 that had already converged reset its filter (it resets after 5
-//               consecutive samples over 100 ms off, protocols/autopilots.md §3.10). ArduPilot
-//               does not use TIMESYNC for poses: it is always answered.
+//   clock       the vehicle's own requests measure its clock against the host's, in a
+//               VehicleClockMonitor. A PX4 (or a vehicle not yet heard) is answered while that
+//               clock is steady, and while it is still being measured for at most
+//               kTimesyncMeasuringAnswers answers (PX4 needs 500 to converge, so it cannot converge
+//               on a clock not yet judged). Once the clock is unsteady its requests are no longer
+//               answered, so PX4 never converges and stamps every pose on arrival, which is never
+//               in its future; the first kTimesyncResetReplies answers after that verdict are a
+//               second off on purpose, which makes a PX4 that had already converged reset its
+//               filter (it resets after 5 consecutive samples over 100 ms off,
+//               protocols/autopilots.md §3.10). ArduPilot does not use TIMESYNC for poses: it is
+//               always answered.
 //   origin      not_needed → (sending ⇄ mismatch) → confirmed | conflict. While sending, the
 //               Sender emits SET_GPS_GLOBAL_ORIGIN ~1 Hz. A GPS_GLOBAL_ORIGIN from the vehicle
 //               matching ours (|Δlat|, |Δlon| ≤ 1e-7 deg, |Δalt| ≤ 1 cm) confirms it: sending
@@ -257,6 +257,12 @@ class VehicleState {
  private:
   void on_heartbeat(const ReceivedMessage& message, HostTime now, VehicleReaction& reaction);
   void on_timesync(const ReceivedMessage& message, HostTime now, VehicleReaction& reaction);
+  /// The vehicle's own TIMESYNC request, stamped `ts1_ns`, arrived at `now`: measures its clock
+  /// and returns the tc1 to answer with, or nullopt when it is not to be answered (header comment).
+  std::optional<std::int64_t> answer_own_request(std::int64_t ts1_ns, HostTime now,
+                                                 VehicleReaction& reaction);
+  /// A new boot of the vehicle: nothing of its time sync is left (the answers' counts restart).
+  void forget_time_sync();
   void on_origin(const mavlink::GpsGlobalOrigin& origin, VehicleReaction& reaction);
   void update_agreement(HostTime now, VehicleReaction& reaction);
   /// A vehicle estimate stamped `time_boot_ms` arrived: false (and the check reset) while the
