@@ -112,6 +112,16 @@ struct ConfigDraft {
   Field<std::string> token;
   Field<std::vector<HostPort>> allowed_hosts;
   Field<std::uint32_t> max_connections_per_client;
+  std::optional<Where> ros2_header;
+  Field<std::uint32_t> ros2_domain_id;
+  Field<std::string> ros2_namespace;
+  Field<std::string> ros2_frame_id;
+  Field<std::vector<std::string>> ros2_bodies;
+  Field<std::array<bool, 3>> ros2_publish;  ///< pose, odom, tf
+  Field<core::RosAxes> ros2_axes;
+  Field<std::string> ros2_interface;
+  /// A draft made from a Config carries its checked [ros2] whole (draft_from_config).
+  std::optional<Ros2Settings> ros2_checked;
   std::vector<std::string> mistyped;  ///< keys given with a wrong type (reported, not "missing")
 };
 
@@ -126,11 +136,13 @@ struct KeySpec {
   void (*apply)(Target& target, const Value& value, Diagnostics& diagnostics);
 };
 
-/// The schema (keys.cpp). Tables of the file: [mocap], [origin], [[vehicle]], [tracking], [http].
+/// The schema (keys.cpp). Tables of the file: [mocap], [origin], [[vehicle]], [tracking], [http],
+/// [ros2].
 [[nodiscard]] std::span<const KeySpec<ConfigDraft>> mocap_keys();
 [[nodiscard]] std::span<const KeySpec<ConfigDraft>> origin_keys();
 [[nodiscard]] std::span<const KeySpec<ConfigDraft>> tracking_keys();
 [[nodiscard]] std::span<const KeySpec<ConfigDraft>> http_keys();
+[[nodiscard]] std::span<const KeySpec<ConfigDraft>> ros2_keys();
 [[nodiscard]] std::span<const KeySpec<VehicleDraft>> vehicle_keys();
 
 /// "unknown key" with a suggestion from `here`, or the table the key belongs to, or the list of

@@ -350,6 +350,74 @@ HttpSettings finalize_http(const ConfigDraft& d, Diagnostics& diagnostics) {
   return http;
 }
 
+std::optional<Ros2Settings> finalize_ros2(const ConfigDraft& d, Diagnostics& diagnostics) {
+  if (!d.ros2_header) return std::nullopt;
+  if (d.ros2_checked) return d.ros2_checked;
+  Ros2Settings ros2;
+  if (d.ros2_domain_id.value) {
+    ros2.domain_id = *d.ros2_domain_id.value;
+    if (*ros2.domain_id > kMaxAdvisedRosDomainId) {
+      diagnostics.warning(d.ros2_domain_id.where, d.ros2_domain_id.key,
+                          "domain " + std::to_string(*ros2.domain_id) +
+                              " is above 101: on Linux its ports may fall in the ephemeral range "
+                              "and clash with other programs' sockets (ROS docs \"About Domain "
+                              "ID\")");
+    }
+  }
+  if (d.ros2_namespace.value) ros2.ns = *d.ros2_namespace.value;
+  if (d.ros2_frame_id.value) ros2.frame_id = *d.ros2_frame_id.value;
+  if (d.ros2_axes.value) ros2.axes = *d.ros2_axes.value;
+  if (d.ros2_interface.value) ros2.interface = *d.ros2_interface.value;
+  if (d.ros2_publish.value) {
+    ros2.pose = (*d.ros2_publish.value)[0];
+    ros2.odom = (*d.ros2_publish.value)[1];
+    ros2.tf = (*d.ros2_publish.value)[2];
+  }
+  if (d.ros2_bodies.value) {
+    ros2.bodies = *d.ros2_bodies.value;
+    const Field<std::vector<std::string>>& f = d.ros2_bodies;
+    std::vector<std::pair<std::string, std::string>> tokens;  // token, body
+    for (const std::string& body : ros2.bodies) {
+      const std::string token = core::ros_name_token(body);
+      if (token.empty()) {
+        diagnostics.error(f.where, f.key,
+                          "body " + quoted(body) +
+                              " has no letter or digit to make a ROS name of: it cannot be "
+                              "published (rename it in the mocap system)");
+        continue;
+      }
+      const auto same = std::find_if(tokens.begin(), tokens.end(),
+                                     [&](const auto& t) { return t.first == token; });
+      if (same != tokens.end()) {
+        diagnostics.error(f.where, f.key,
+                          same->second == body
+                              ? "body " + quoted(body) + " is listed twice"
+                              : "bodies " + quoted(same->second) + " and " + quoted(body) +
+                                    " both become the ROS name " + quoted(token) +
+                                    ": rename one in the mocap system or leave one out");
+        continue;
+      }
+      tokens.emplace_back(token, body);
+      const std::string topic = core::ros_body_topic(ros2.ns, token, "pose");
+      if (topic.size() > core::kMaxRosTopicLength) {
+        diagnostics.error(f.where, f.key,
+                          "body " + quoted(body) + " makes the topic " + quoted(topic) + " of " +
+                              std::to_string(topic.size()) + " characters; ROS allows " +
+                              std::to_string(core::kMaxRosTopicLength));
+      } else if (token != body) {
+        diagnostics.warning(f.where, f.key,
+                            "body " + quoted(body) + " is published as " + quoted(token) +
+                                " (ROS names hold only letters, digits and single '_', and "
+                                "start with no digit): topics " +
+                                core::ros_body_topic(ros2.ns, token, "…") + ", tf frame " +
+                                quoted(token));
+      }
+    }
+  }
+  if (!ros2.pose && !ros2.odom && !ros2.tf) return std::nullopt;  // reported by ros2_publish
+  return ros2;
+}
+
 }  // namespace
 
 std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
@@ -367,8 +435,11 @@ std::optional<Config> finalize(const ConfigDraft& d, Diagnostics& diagnostics) {
   config.tracking = d.tracking;
   check_tracking(d, diagnostics);
   config.http = finalize_http(d, diagnostics);
+  config.ros2 = finalize_ros2(d, diagnostics);
   if (d.vehicles.empty()) {
-    diagnostics.warning(d.document, "vehicle", "no [[vehicle]] tables: nothing will be sent");
+    diagnostics.warning(d.document, "vehicle",
+                        config.ros2 ? "no [[vehicle]] tables: only the [ros2] topics are published"
+                                    : "no [[vehicle]] tables: nothing will be sent");
   }
   if (!diagnostics.errors.empty()) return std::nullopt;
   return config;

@@ -367,6 +367,112 @@ bool has_key(const std::array<Spec, N>& specs, std::string_view key) {
   return std::any_of(specs.begin(), specs.end(), [&](const Spec& s) { return s.name == key; });
 }
 
+// ---- [ros2] ----
+
+void ros2_domain_id(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  // 232: the largest domain whose RTPS ports (7400 + 250·d + …) fit in 16 bits; ROS advises at
+  // most 101 on Linux (finalize warns).
+  ValueOrError<std::uint32_t> parsed = ValueOrError<std::uint32_t>::failure(
+      "must be an integer from 0 to " + std::to_string(kMaxRosDomainId) + ", got " +
+      std::to_string(v.integer()));
+  if (v.integer() >= 0 && v.integer() <= static_cast<std::int64_t>(kMaxRosDomainId)) {
+    parsed = static_cast<std::uint32_t>(v.integer());
+  }
+  assign(d.ros2_domain_id, v, std::move(parsed), diag);
+}
+void ros2_namespace(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  ValueOrError<std::string> parsed = v.text();
+  if (auto problem = core::ros_namespace_problem(v.text())) {
+    parsed = ValueOrError<std::string>::failure(
+        "must be a ROS namespace (tokens of letters, digits and '_' joined by '/', none starting "
+        "with a digit), got " +
+        quoted(v.text()) + ": it " + *problem);
+  } else if (!v.text().empty() && v.text().front() == '/') {
+    parsed = v.text().substr(1);
+  }
+  assign(d.ros2_namespace, v, std::move(parsed), diag);
+}
+void ros2_frame_id(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  ValueOrError<std::string> parsed = v.text();
+  if (auto problem = core::ros_frame_id_problem(v.text())) {
+    parsed = ValueOrError<std::string>::failure(
+        "must be a tf2 frame id such as \"world\" or "
+        "\"map\", got " +
+        quoted(v.text()) + ": it " + *problem);
+  }
+  assign(d.ros2_frame_id, v, std::move(parsed), diag);
+}
+void ros2_bodies(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  for (const std::string& body : v.list()) {
+    if (auto parsed = parse_body(body); !parsed) {
+      assign(d.ros2_bodies, v, ValueOrError<std::vector<std::string>>::failure(parsed.error()),
+             diag);
+      return;
+    }
+  }
+  assign(d.ros2_bodies, v, ValueOrError<std::vector<std::string>>(v.list()), diag);
+}
+void ros2_publish(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  constexpr std::array<std::string_view, 3> kTopics = {"pose", "odom", "tf"};
+  std::array<bool, 3> chosen{};
+  for (const std::string& name : v.list()) {
+    const auto it = std::find(kTopics.begin(), kTopics.end(), name);
+    if (it == kTopics.end()) {
+      assign(d.ros2_publish, v,
+             ValueOrError<std::array<bool, 3>>::failure(
+                 "lists " + quoted(name) + did_you_mean(name, kTopics) +
+                 " (each of \"pose\", \"odom\", \"tf\" at most once)"),
+             diag);
+      return;
+    }
+    auto& slot = chosen[static_cast<std::size_t>(it - kTopics.begin())];
+    if (slot) {
+      assign(d.ros2_publish, v,
+             ValueOrError<std::array<bool, 3>>::failure(quoted(name) + " is listed twice"), diag);
+      return;
+    }
+    slot = true;
+  }
+  if (v.list().empty()) {
+    assign(d.ros2_publish, v,
+           ValueOrError<std::array<bool, 3>>::failure(
+               "is empty: list at least one of \"pose\", \"odom\", \"tf\" (or remove [ros2])"),
+           diag);
+    return;
+  }
+  assign(d.ros2_publish, v, ValueOrError<std::array<bool, 3>>(chosen), diag);
+}
+void ros2_axes(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  ValueOrError<core::RosAxes> parsed = ValueOrError<core::RosAxes>::failure(
+      "must be \"enu_flu\" (REP 103: ENU world, FLU body) or \"mocap\" (the mocap system's own "
+      "axes), got " +
+      quoted(v.text()));
+  for (const core::RosAxes axes : {core::RosAxes::enu_flu, core::RosAxes::mocap}) {
+    if (v.text() == core::to_string(axes)) parsed = axes;
+  }
+  assign(d.ros2_axes, v, std::move(parsed), diag);
+}
+void ros2_interface(ConfigDraft& d, const Value& v, Diagnostics& diag) {
+  ValueOrError<std::string> parsed = v.text();
+  if (v.text() != "all" && v.text() != "loopback" && !is_ipv4_literal(v.text())) {
+    parsed = ValueOrError<std::string>::failure(
+        "must be \"all\", \"loopback\" or an IPv4 address of this machine (e.g. "
+        "\"192.168.1.10\"), got " +
+        quoted(v.text()));
+  }
+  assign(d.ros2_interface, v, std::move(parsed), diag);
+}
+
+constexpr std::array<KeySpec<ConfigDraft>, 7> kRos2Keys = {{
+    {"domain_id", ValueType::integer, ros2_domain_id},
+    {"namespace", ValueType::string, ros2_namespace},
+    {"frame_id", ValueType::string, ros2_frame_id},
+    {"bodies", ValueType::string_list, ros2_bodies},
+    {"publish", ValueType::string_list, ros2_publish},
+    {"axes", ValueType::string, ros2_axes},
+    {"interface", ValueType::string, ros2_interface},
+}};
+
 }  // namespace
 
 std::span<const KeySpec<ConfigDraft>> mocap_keys() {
@@ -380,6 +486,9 @@ std::span<const KeySpec<ConfigDraft>> tracking_keys() {
 }
 std::span<const KeySpec<ConfigDraft>> http_keys() {
   return kHttpKeys;
+}
+std::span<const KeySpec<ConfigDraft>> ros2_keys() {
+  return kRos2Keys;
 }
 
 void add_allowed_host(ConfigDraft& draft, const Value& value, Diagnostics& diagnostics) {
@@ -425,12 +534,13 @@ std::string unknown_key_message(std::string_view key, std::span<const std::strin
     std::string_view table;
     bool found;
   };
-  const std::array<Home, 5> homes = {{
+  const std::array<Home, 6> homes = {{
       {"[mocap]", has_key(kMocapKeys, key)},
       {"[origin]", has_key(kOriginKeys, key)},
       {"[[vehicle]]", has_key(kVehicleKeys, key)},
       {"[tracking]", has_key(kTrackingKeys, key)},
       {"[http]", has_key(kHttpKeys, key)},
+      {"[ros2]", has_key(kRos2Keys, key)},
   }};
   for (const auto& home : homes) {
     if (home.found) return "unknown key here; it belongs in " + std::string(home.table);

@@ -90,6 +90,10 @@ ConfigDraft draft_from_config(const Config& config, std::string_view origin,
   d.allowed_hosts = given(config.http.allowed_hosts, where, "http.allowed_hosts");
   d.max_connections_per_client =
       given(config.http.max_connections_per_client, where, "http.max_connections_per_client");
+  if (config.ros2) {
+    d.ros2_header = where;
+    d.ros2_checked = config.ros2;
+  }
   return d;
 }
 

@@ -13,8 +13,8 @@
 namespace mocaplink::config::detail {
 namespace {
 
-constexpr std::array<std::string_view, 5> kTables = {"mocap", "origin", "vehicle", "tracking",
-                                                     "http"};
+constexpr std::array<std::string_view, 6> kTables = {"mocap",    "origin", "vehicle",
+                                                     "tracking", "http",   "ros2"};
 
 Where at(const std::string& file, const toml::source_region& region) {
   return Where{file, region.begin.line, region.begin.column};
@@ -208,6 +208,9 @@ bool read_toml(std::string_view text, std::string_view filename, ConfigDraft& dr
       read_table(*table, file, prefix, origin_keys(), draft, diagnostics);
     } else if (name == "tracking") {
       read_table(*table, file, prefix, tracking_keys(), draft, diagnostics);
+    } else if (name == "ros2") {
+      draft.ros2_header = header;
+      read_table(*table, file, prefix, ros2_keys(), draft, diagnostics);
     } else {
       read_table(*table, file, prefix, http_keys(), draft, diagnostics);
     }

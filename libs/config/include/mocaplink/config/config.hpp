@@ -15,9 +15,11 @@
 #include "mocaplink/config/net_address.hpp"
 #include "mocaplink/config/profile.hpp"
 #include "mocaplink/config/source_url.hpp"
+#include "mocaplink/config/value_or_error.hpp"
 #include "mocaplink/core/bridge.hpp"
 #include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/profile.hpp"
+#include "mocaplink/core/ros.hpp"
 #include "mocaplink/core/sender.hpp"
 #include "mocaplink/core/tracker.hpp"
 
@@ -63,6 +65,36 @@ struct HttpSettings {
   std::uint32_t max_connections_per_client = 32;
 };
 
+/// The largest DDS domain id: its RTPS ports (7400 + 250·d + …) still fit in 16 bits.
+inline constexpr std::uint32_t kMaxRosDomainId = 232;
+/// ROS's advice for Linux: above this the ports may meet the ephemeral range (a warning).
+inline constexpr std::uint32_t kMaxAdvisedRosDomainId = 101;
+
+/// [ros2]: the bodies on ROS 2 topics over DDS (docs/ros2.md). Checked: the namespace and frame id
+/// are legal ROS names, every listed body maps to a distinct, non-empty token that makes topic
+/// names of at most core::kMaxRosTopicLength, at least one thing is published.
+struct Ros2Settings {
+  /// 0..232 (the RTPS port arithmetic's limit); nullopt: ROS_DOMAIN_ID, else 0 — the caller reads
+  /// the environment (parse_ros_domain_id) and `check` says which it took.
+  std::optional<std::uint32_t> domain_id;
+  std::string ns = "mocap";         ///< [ros2] namespace; "" = topics at the root
+  std::string frame_id = "world";   ///< the world frame (header.frame_id, the tf parent)
+  std::vector<std::string> bodies;  ///< mocap body names; empty = every body the source streams
+  bool pose = true;                 ///< /NS/BODY/pose (geometry_msgs/PoseStamped)
+  bool odom = true;                 ///< /NS/BODY/odom (nav_msgs/Odometry)
+  bool tf = true;                   ///< /tf (tf2_msgs/TFMessage), world → body
+  core::RosAxes axes = core::RosAxes::enu_flu;
+  /// Where DDS discovers and sends: "all" (every interface, multicast discovery: what a ROS 2
+  /// machine does by default), "loopback" (127.0.0.1 only, unicast discovery: this machine's ROS 2
+  /// nodes, with ROS_LOCALHOST_ONLY=1 or ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST on theirs) or one
+  /// IPv4 address of this machine (that interface only).
+  std::string interface = "all";
+};
+
+/// ROS_DOMAIN_ID as rcl reads it: unset or "" is 0; otherwise a whole number (decimal, or 0x… hex,
+/// or 0… octal, as strtoul with base 0), 0..232.
+[[nodiscard]] ValueOrError<std::uint32_t> parse_ros_domain_id(std::string_view text);
+
 struct Config {
   MocapSettings mocap;
   /// [origin]: the geodetic position of the mocap frame's origin (WGS84; altitude above mean sea
@@ -75,6 +107,7 @@ struct Config {
   /// bounds checked per key here, the tracker's cross-key rules by core::validate).
   core::TrackerConfig tracking;
   HttpSettings http;
+  std::optional<Ros2Settings> ros2;  ///< [ros2]; absent: no ROS 2 participant at all
 };
 
 }  // namespace mocaplink::config
