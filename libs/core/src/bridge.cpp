@@ -67,6 +67,9 @@ std::variant<Bridge, BridgeConfigError> Bridge::make(const BridgeConfig& config,
     if (auto* error = std::get_if<BridgeConfigError>(&added)) return std::move(*error);
   }
   bridge.config_.vehicles = config.vehicles;
+  if (config.published.enabled && !config.published.all) {
+    for (const std::string& name : config.published.names) bridge.publish_body(name);
+  }
   return bridge;
 }
 
@@ -160,6 +163,24 @@ void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
   }
 }
 
+void Bridge::publish_body(std::string_view name) {
+  const auto named = [&](const Body& b) { return b.name == name; };
+  if (std::any_of(bodies_.begin(), bodies_.end(),
+                  [&](const Body& b) { return b.exported && named(b); })) {
+    return;
+  }
+  auto it = std::find_if(bodies_.begin(), bodies_.end(), named);
+  if (it == bodies_.end()) {
+    const BodyAxisMapping& axes = config_.published.axes;
+    bodies_.push_back(Body{std::string(name), axes,
+                           Tracker(config_.tracking, AxisMapping(config_.world, axes)),
+                           TrackingState::unseen, 0, BodyEstimate{}});
+    it = std::prev(bodies_.end());
+  }
+  it->exported = true;
+  published_names_.emplace(name);
+}
+
 std::size_t Bridge::next_slot() const {
   const auto empty = std::find_if(vehicles_.begin(), vehicles_.end(),
                                   [](const std::optional<Vehicle>& v) { return !v.has_value(); });
@@ -180,7 +201,7 @@ bool Bridge::remove_vehicle(std::size_t slot) {
   while (!vehicles_.empty() && !vehicles_.back()) vehicles_.pop_back();
   const bool followed = std::any_of(vehicles_.begin(), vehicles_.end(),
                                     [&](const auto& v) { return v && v->body == body; });
-  if (followed) return true;
+  if (followed || bodies_[body].exported) return true;
   bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(body));
   for (auto& v : vehicles_) {
     if (v && v->body > body) --v->body;
@@ -360,11 +381,25 @@ void Bridge::emit_frame(std::size_t first, std::size_t end,
 
 void Bridge::end_frame(BridgeOutput& out) {
   assert(frame_ != nullptr && "end_frame without begin_frame");
+  if (config_.published.enabled && config_.published.all) {
+    for (const BodySample& sample : frame_->bodies) {
+      if (!published_names_.contains(sample.name)) publish_body(sample.name);
+    }
+  }
+  all_tracked_ = false;  // a body published from this frame on is still to be tracked
   track_bodies();
   body_events(out);
   station_.on_frame(*frame_, frame_context_.now);  // figures for the dashboard: after the sends
   frame_ = nullptr;
   all_tracked_ = false;
+}
+
+void Bridge::published_bodies(std::vector<PublishedBody>& out) const {
+  for (const Body& body : bodies_) {
+    if (body.exported && body.tracked_frame == frame_number_ && body.published.pose_valid()) {
+      out.push_back({body.name, &body.published, &body.axes});
+    }
+  }
 }
 
 void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,

@@ -42,6 +42,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <variant>
 #include <vector>
 
@@ -93,6 +94,24 @@ struct VehicleSpec {
   bool enabled = true;                              ///< false: tracked and shown, nothing sent
 };
 
+/// Bodies tracked for publication beside the vehicles' bodies (the [ros2] topics, docs/ros2.md).
+/// A body a vehicle follows is published with that vehicle's body axes; any other with `axes`.
+struct PublishedBodies {
+  bool enabled = false;
+  /// Every body the frames name (each from the first frame that names it), or only `names`.
+  bool all = true;
+  std::vector<std::string> names;
+  BodyAxisMapping axes = default_body_axes();  ///< [mocap] body_forward / body_up
+};
+
+/// A published body after end_frame (Bridge::published_bodies): valid until the next begin_frame,
+/// add_vehicle or remove_vehicle.
+struct PublishedBody {
+  std::string_view name;
+  const BodyEstimate* estimate = nullptr;
+  const BodyAxisMapping* axes = nullptr;
+};
+
 struct BridgeConfig {
   WorldAxisMapping world = default_world_axes();  ///< mocap world → NED
   /// Geodetic origin of the mocap frame (altitude AMSL, used as is: docs/messages.md "Altitude").
@@ -106,6 +125,7 @@ struct BridgeConfig {
   CaptureTimeMapper::Config capture_time;
   /// Send our own TIMESYNC requests (1 Hz) to measure RTT and offset (diagnostics only).
   bool timesync_requests = true;
+  PublishedBodies published;
 };
 
 /// Why make() refused a config (the config library normally catches these first).
@@ -224,6 +244,11 @@ class Bridge {
   void track_bodies();
   void emit_frame(std::size_t first, std::size_t end, std::vector<OutgoingMessage>& messages);
   void end_frame(BridgeOutput& out);
+  /// After end_frame: the published bodies (BridgeConfig::published) with a fresh pose in that
+  /// frame (BodyEstimate::pose_valid: a body not tracked in a frame is not published in it), in
+  /// body order, appended to `out`; and the frame's capture time on the host clock.
+  void published_bodies(std::vector<PublishedBody>& out) const;
+  [[nodiscard]] HostTime frame_capture() const { return frame_context_.capture; }
   /// A decoded message from vehicle `vehicle`'s link (its slot; an empty or out-of-range slot is
   /// ignored).
   BridgeOutput on_vehicle_message(std::size_t vehicle, const ReceivedMessage& message,
@@ -294,6 +319,7 @@ class Bridge {
     /// so looking there first finds it without comparing every name (track_body()).
     std::size_t frame_index_hint = 0;
     std::uint64_t tracked_frame = 0;  ///< the last frame_number_ its tracker saw
+    bool exported = false;            ///< in published_bodies() (BridgeConfig::published)
   };
   struct Vehicle {
     VehicleSpec spec;
@@ -311,6 +337,9 @@ class Bridge {
                                                                   std::size_t slot) const;
   /// Builds the vehicle in `slot` (== vehicles_.size() appends), sharing or creating its Body.
   void place_vehicle(const VehicleSpec& spec, std::size_t slot);
+  /// Marks the body named `name` published, adding it (with the published axes) if no vehicle
+  /// follows it. A name already published is left as it is.
+  void publish_body(std::string_view name);
   [[nodiscard]] Vehicle* live(std::size_t slot);
 
   /// Gives the body the current frame's sample (or its absence), once per frame.
@@ -349,6 +378,8 @@ class Bridge {
   Duration restart_gap_{};    // host time from the old clock's last frame to the restart frame
   bool all_tracked_ = false;  // track_bodies() ran in this frame (asserted by track_body)
   std::uint64_t source_restarts_ = 0;
+  /// With PublishedBodies::all: the names already published (end_frame adds each new one once).
+  std::unordered_set<std::string> published_names_;
   /// Capture → received of recent frames (received − the capture time placed on the host clock,
   /// which includes the latency the source reports): the set-up's delay recommendation.
   LatencyWindow capture_age_;
