@@ -22,6 +22,23 @@ else()
   pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
 endif()
 
+# ROS 2 over DDS (adapters/ros2): Fast DDS 2.x from Debian, in native Linux builds. Debian has no
+# Windows package, so that build leaves it out (`check` says so when [ros2] asks); the arm64 and
+# armhf cross roots (scripts/cross-sysroot) do not carry it yet, so those builds leave it out too.
+if(WIN32 OR CMAKE_CROSSCOMPILING)
+  set(ros2_default OFF)
+else()
+  set(ros2_default ON)
+endif()
+option(MOCAPLINK_ROS2 "Publish to ROS 2 over Fast DDS (adapters/ros2)" ${ros2_default})
+if(MOCAPLINK_ROS2)
+  find_package(fastrtps 2 QUIET)
+  if(NOT fastrtps_FOUND)
+    message(FATAL_ERROR "Fast DDS 2.x (Debian's libfastrtps-dev) not found: run scripts/setup, or "
+                        "configure with -DMOCAPLINK_ROS2=OFF to build without ROS 2")
+  endif()
+endif()
+
 # Standalone Asio is header-only and ships no CMake package.
 find_path(ASIO_INCLUDE_DIR asio.hpp REQUIRED)
 add_library(mocaplink_asio INTERFACE)

@@ -12,7 +12,9 @@
 #include "commands.hpp"
 #include "mocaplink/config/config_error.hpp"
 #include "mocaplink/config/load.hpp"
+#include "mocaplink/ros2/publisher.hpp"
 #include "mocaplink/sources/registry.hpp"
+#include "run_config.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -93,6 +95,23 @@ void print_summary(const config::Config& cfg) {
               cfg.http.token.empty() ? "" : " (token required)", names.c_str());
 }
 
+void print_ros2(const config::Ros2Settings& ros2, const Ros2Domain& domain) {
+  std::string what;
+  for (const auto& [on, name] : {std::pair{ros2.pose, "pose"}, std::pair{ros2.odom, "odom"}}) {
+    if (on) what += (what.empty() ? "" : ", ") + core::ros_body_topic(ros2.ns, "BODY", name);
+  }
+  if (ros2.tf) what += (what.empty() ? "" : ", ") + std::string("/tf");
+  std::string bodies = "every body the source streams";
+  if (!ros2.bodies.empty()) {
+    bodies.clear();
+    for (const auto& b : ros2.bodies) bodies += (bodies.empty() ? "" : ", ") + b;
+  }
+  std::printf("  ros2: domain %u (%s), %s; %s; world frame %s, axes %s; interface %s; %s\n",
+              domain.id, domain.from.c_str(), what.c_str(), bodies.c_str(), ros2.frame_id.c_str(),
+              std::string(core::to_string(ros2.axes)).c_str(), ros2.interface.c_str(),
+              ros2::implementation().c_str());
+}
+
 int run_check(const std::string& path, const sources::SourceRegistry& sources) {
   std::string error;
   const auto text = read_file(path, error);
@@ -110,6 +129,16 @@ int run_check(const std::string& path, const sources::SourceRegistry& sources) {
     const std::size_t n = result.errors.size();
     std::fprintf(stderr, "%s: %zu error%s\n", path.c_str(), n, n == 1 ? "" : "s");
     return 1;
+  }
+  if (result.config->ros2) {
+    const auto domain = resolve_ros2(*result.config, error);
+    if (!domain) {
+      std::fprintf(stderr, "%s: %s\n%s: 1 error\n", path.c_str(), error.c_str(), path.c_str());
+      return 1;
+    }
+    print_summary(*result.config);
+    print_ros2(*result.config->ros2, *domain);
+    return 0;
   }
   print_summary(*result.config);
   return 0;

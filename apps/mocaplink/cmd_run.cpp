@@ -100,6 +100,15 @@ int run_command(const RunOptions& options, const sources::SourceRegistry& source
   if (options.record_dir) settings.record_dir = *options.record_dir;
   settings.summary_period = summary_period();
   settings.http_requested = options.http.has_value();
+  if (settings.config.ros2) {
+    std::string error;
+    const auto domain = resolve_ros2(settings.config, error);
+    if (!domain) {
+      spdlog::error("configuration: {}; nothing was sent", error);
+      return kExitBadInput;
+    }
+    settings.ros2_domain_id = domain->id;
+  }
   spdlog::info("mocaplink {}: source {}, {} vehicle{}", MOCAPLINK_VERSION,
                settings.config.mocap.source.text, settings.config.vehicles.size(),
                settings.config.vehicles.size() == 1 ? "" : "s");

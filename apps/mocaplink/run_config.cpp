@@ -1,11 +1,13 @@
 #include "run_config.hpp"
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "mocaplink/config/config_error.hpp"
 #include "mocaplink/config/demo.hpp"
 #include "mocaplink/config/load.hpp"
+#include "mocaplink/ros2/publisher.hpp"
 
 namespace mocaplink::app {
 namespace {
@@ -65,6 +67,23 @@ std::optional<config::Config> load_run_config(const RunOptions& options,
   return std::move(result.config);
 }
 
+std::optional<Ros2Domain> resolve_ros2(const config::Config& config, std::string& error) {
+  if (!ros2::available()) {
+    error = "[ros2]: this build cannot publish to ROS 2 (" + ros2::implementation() +
+            "); remove [ros2], or run mocaplink on Linux (amd64, arm64, armhf)";
+    return std::nullopt;
+  }
+  if (config.ros2->domain_id) return Ros2Domain{*config.ros2->domain_id, "[ros2] domain_id"};
+  const char* env = std::getenv("ROS_DOMAIN_ID");
+  if (env == nullptr || *env == '\0') return Ros2Domain{0, "the default"};
+  auto parsed = config::parse_ros_domain_id(env);
+  if (!parsed) {
+    error = "[ros2]: no domain_id, and " + parsed.error();
+    return std::nullopt;
+  }
+  return Ros2Domain{parsed.value(), "ROS_DOMAIN_ID"};
+}
+
 std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
                                                      std::string& error) {
   core::BridgeConfig out;
@@ -77,6 +96,17 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
   out.origin = cfg.origin;
   out.tracking = cfg.tracking;
   for (const config::Vehicle& vehicle : cfg.vehicles) out.vehicles.push_back(vehicle.spec);
+  if (cfg.ros2) {
+    const auto axes = core::BodyAxisMapping::make(cfg.mocap.body_forward, cfg.mocap.body_up);
+    if (!axes) {
+      error = "[mocap] " + axes.error().field + ": " + axes.error().message;
+      return std::nullopt;
+    }
+    out.published.enabled = true;
+    out.published.all = cfg.ros2->bodies.empty();
+    out.published.names = cfg.ros2->bodies;
+    out.published.axes = *axes;
+  }
   return out;
 }
 

@@ -34,6 +34,17 @@ struct RunOptions {
 
 /// The core's view of a validated Config. Errors here would be bugs in the config library
 /// (which checks the same rules) and are returned as text.
+/// [ros2]'s domain and where it came from.
+struct Ros2Domain {
+  std::uint32_t id = 0;
+  std::string from;  ///< "[ros2] domain_id", "ROS_DOMAIN_ID" or "the default"
+};
+/// The domain [ros2] publishes on: its domain_id, else ROS_DOMAIN_ID (as rcl reads it), else 0.
+/// nullopt and `error` when ROS_DOMAIN_ID is bad or this build has no ROS 2 (no DDS library on
+/// its platform). Precondition: config.ros2.
+[[nodiscard]] std::optional<Ros2Domain> resolve_ros2(const config::Config& config,
+                                                     std::string& error);
+
 [[nodiscard]] std::optional<core::BridgeConfig> make_bridge_config(const config::Config& config,
                                                                    std::string& error);
 

@@ -27,6 +27,7 @@
 #include "mocaplink/io/signing_store.hpp"
 #include "mocaplink/mavlink/frame.hpp"
 #include "mocaplink/mavlink/signing.hpp"
+#include "mocaplink/ros2/publisher.hpp"
 #include "mocaplink/sources/registry.hpp"
 #include "run_config.hpp"
 #include "run_dashboard.hpp"
@@ -130,6 +131,8 @@ class Daemon {
   void log_rejections();
   void on_frame(const core::MocapFrame& frame, core::HostTime received);
   void dispatch(const core::BridgeOutput& out);
+  void publish_ros2();
+  void start_ros2();
   /// Sends messages[first, end) (one vehicle's run) to that vehicle's link, in batches.
   void send_run(std::span<const core::OutgoingMessage> messages);
   /// After messages went out: the recording and each signed vehicle's signing clock.
@@ -174,8 +177,11 @@ class Daemon {
   std::uint64_t next_rejection_log_ = 1;  // the source's rejected count logged next (1, 10, ...)
   core::BridgeOutput frame_output_;       // per frame, kept for its capacity
   Summary summary_;
-  GroundStations ground_stations_;           // the vehicles' `gcs` endpoints (run_gcs.hpp)
-  std::unique_ptr<RunDashboard> dashboard_;  // run_dashboard.hpp; after everything it reads
+  GroundStations ground_stations_;  // the vehicles' `gcs` endpoints (run_gcs.hpp)
+  /// The [ros2] publisher (nullptr without [ros2]); its thread is off the pose path.
+  std::unique_ptr<ros2::Publisher> ros2_;
+  std::vector<core::PublishedBody> published_;  // per frame, kept for its capacity
+  std::unique_ptr<RunDashboard> dashboard_;     // run_dashboard.hpp; after everything it reads
   bool stopping_ = false;
 };
 
@@ -548,6 +554,22 @@ void Daemon::on_frame(const core::MocapFrame& frame, core::HostTime received) {
   }
   bridge_.end_frame(frame_output_);  // the bodies no vehicle needed; body events; Station
   for (const auto& e : frame_output_.events) summary_.on_event(e, io::host_now());
+  if (ros2_) publish_ros2();
+}
+
+void Daemon::publish_ros2() {
+  // After every vehicle's poses: the [ros2] bodies go to the publishing thread, which converts,
+  // encodes and writes them (ros2/publisher.hpp).
+  published_.clear();
+  bridge_.published_bodies(published_);
+  if (published_.empty()) return;
+  ros2::FrameUpdate update;
+  update.capture = bridge_.frame_capture();
+  update.bodies.reserve(published_.size());
+  for (const core::PublishedBody& b : published_) {
+    update.bodies.push_back({std::string(b.name), *b.estimate, *b.axes});
+  }
+  ros2_->publish(std::move(update));
 }
 
 void Daemon::dispatch(const core::BridgeOutput& out) {
@@ -646,6 +668,22 @@ void Daemon::stop(const std::string& reason) {
   stop_timer_.async_wait([this](const std::error_code&) { loop_.stop(); });
 }
 
+void Daemon::start_ros2() {
+  if (!config_.ros2) return;
+  const config::Ros2Settings& s = *config_.ros2;
+  ros2::Ros2Options options;
+  options.domain_id = settings_.ros2_domain_id;
+  options.ns = s.ns;
+  options.frame_id = s.frame_id;
+  options.pose = s.pose;
+  options.odom = s.odom;
+  options.tf = s.tf;
+  options.axes = s.axes;
+  options.interface = s.interface;
+  options.world = bridge_.config().world;
+  ros2_ = ros2::start_publisher(options);  // a participant that fails is an error in its status
+}
+
 int Daemon::run() {
   io::StopSignals signals(loop_, [this](std::string_view what, int count) {
     if (count == 1) {
@@ -655,6 +693,7 @@ int Daemon::run() {
       loop_.stop();
     }
   });
+  start_ros2();
   // The dashboard first: a bad [http] listen stops us before anything is sent.
   auto dashboard = RunDashboard::start(
       loop_,
@@ -665,7 +704,8 @@ int Daemon::run() {
                       },
                       [this](const std::string& name) { return remove_vehicle(name); },
                       [this](const web::UpdateVehicle& update) { return update_vehicle(update); },
-                      [this](const web::SetupVehicle& setup) { return setup_vehicle(setup); }});
+                      [this](const web::SetupVehicle& setup) { return setup_vehicle(setup); },
+                      ros2_.get()});
   if (const auto* error = std::get_if<std::string>(&dashboard)) {
     spdlog::error("{}", *error);
     return kExitRuntime;

@@ -23,6 +23,8 @@ struct DaemonSettings {
   std::filesystem::path state_dir;                  ///< signing timestamps (io::SigningStore)
   std::chrono::milliseconds summary_period{std::chrono::seconds(10)};
   bool http_requested = false;  ///< --http given on the command line
+  /// [ros2]'s domain: the file's domain_id, else ROS_DOMAIN_ID, else 0 (cmd_run resolves it).
+  std::uint32_t ros2_domain_id = 0;
 };
 
 /// Runs until SIGINT/SIGTERM (or the source finishes) and returns the exit code. Logs go to the

@@ -92,7 +92,34 @@ class RunDashboard::Backend final : public web::DashboardBackend {
       context_.links_down.push_back(state == io::TransportState::down ||
                                     state == io::TransportState::closed);
     }
-    return builder_.build(snapshot, context_);
+    web::StatusView status = builder_.build(snapshot, context_);
+    if (access_.ros2 != nullptr && access_.config.ros2) status.ros2 = ros2_view();
+    if (status.ros2 && !status.ros2->error.empty()) {
+      status.alerts.push_back(
+          {web::AlertLevel::error, "ros2_failing", "ros2", "ROS 2: " + status.ros2->error});
+    }
+    return status;
+  }
+
+  web::Ros2View ros2_view() const {
+    const ros2::Ros2Status s = access_.ros2->status();
+    const config::Ros2Settings& settings = *access_.config.ros2;
+    web::Ros2View v;
+    v.running = s.running;
+    v.error = s.error;
+    v.domain_id = s.domain_id;
+    v.interface = s.interface;
+    v.ns = settings.ns;
+    v.frame_id = settings.frame_id;
+    v.axes = std::string(core::to_string(settings.axes));
+    v.implementation = s.implementation;
+    for (const auto& t : s.topics) v.topics.push_back({t.name, t.type, t.subscribers, t.published});
+    v.frames_published = s.frames_published;
+    v.frames_dropped = s.frames_dropped;
+    v.write_errors = s.write_errors;
+    v.unnamed = s.unnamed;
+    v.clashes = s.clashes;
+    return v;
   }
 
   std::optional<web::ApiError> apply_on_loop(const web::VehicleChange& change) {

@@ -15,6 +15,7 @@
 #include "mocaplink/core/bridge.hpp"
 #include "mocaplink/core/late_frames.hpp"
 #include "mocaplink/core/latency_window.hpp"
+#include "mocaplink/ros2/publisher.hpp"
 #include "mocaplink/sources/source.hpp"
 #include "mocaplink/web/vehicle_request.hpp"
 #include "run_gcs.hpp"
@@ -48,6 +49,8 @@ struct DashboardAccess {
   std::function<std::optional<web::ApiError>(const web::UpdateVehicle& update)> update_vehicle;
   /// Writes a vehicle's set-up fixes or reboots it (core::Bridge::apply_setup, reboot_vehicle).
   std::function<std::optional<web::ApiError>(const web::SetupVehicle& setup)> setup_vehicle;
+  /// The [ros2] publisher (status() from any thread); nullptr without [ros2].
+  const ros2::Publisher* ros2 = nullptr;
 };
 
 class RunDashboard {

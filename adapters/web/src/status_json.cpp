@@ -14,6 +14,12 @@ std::string text(std::string_view s) {
   return std::string(s);
 }
 
+nlohmann::json texts(const std::vector<std::string>& items) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::string& item : items) out.push_back(text(item));
+  return out;
+}
+
 }  // namespace
 
 std::string_view to_string(LinkHealth state) {
@@ -200,6 +206,30 @@ void to_json(nlohmann::json& j, const Alert& alert) {
                      {"message", alert.message}};
 }
 
+void to_json(nlohmann::json& j, const Ros2TopicView& topic) {
+  j = nlohmann::json{{"name", text(topic.name)},
+                     {"type", text(topic.type)},
+                     {"subscribers", topic.subscribers},
+                     {"published", topic.published}};
+}
+
+void to_json(nlohmann::json& j, const Ros2View& ros2) {
+  j = nlohmann::json{{"running", ros2.running},
+                     {"error", text(ros2.error)},
+                     {"domain_id", ros2.domain_id},
+                     {"interface", text(ros2.interface)},
+                     {"namespace", text(ros2.ns)},
+                     {"frame_id", text(ros2.frame_id)},
+                     {"axes", text(ros2.axes)},
+                     {"implementation", text(ros2.implementation)},
+                     {"topics", ros2.topics},
+                     {"frames_published", ros2.frames_published},
+                     {"frames_dropped", ros2.frames_dropped},
+                     {"write_errors", ros2.write_errors},
+                     {"unnamed", texts(ros2.unnamed)},
+                     {"clashes", texts(ros2.clashes)}};
+}
+
 void to_json(nlohmann::json& j, const StatusView& status) {
   j = nlohmann::json{{"uptime_s", status.uptime_s},
                      {"station", status.station},
@@ -209,7 +239,8 @@ void to_json(nlohmann::json& j, const StatusView& status) {
                       {{"connections_open", status.http.open},
                        {"connections_refused", status.http.refused},
                        {"requests_timed_out", status.http.timed_out},
-                       {"requests_host_refused", status.http.host_refused}}}};
+                       {"requests_host_refused", status.http.host_refused}}},
+                     {"ros2", status.ros2 ? nlohmann::json(*status.ros2) : nlohmann::json()}};
 }
 
 }  // namespace mocaplink::web

@@ -284,13 +284,40 @@ struct ConnectionsView {
   std::uint64_t host_refused = 0;
 };
 
+/// One ROS 2 topic mocaplink publishes (docs/ros2.md).
+struct Ros2TopicView {
+  std::string name{};             ///< "/mocap/Quad1/pose"
+  std::string type{};             ///< "geometry_msgs/msg/PoseStamped"
+  std::uint32_t subscribers = 0;  ///< readers matched now
+  std::uint64_t published = 0;    ///< samples written, cumulative
+};
+
+/// The [ros2] side: the participant and its topics.
+struct Ros2View {
+  bool running = false;  ///< the participant is up
+  std::string error{};   ///< why not, or the latest write problem; "" when fine
+  std::uint32_t domain_id = 0;
+  std::string interface {};      ///< "all", "loopback" or an address
+  std::string ns{};              ///< the namespace of the body topics ("" = none)
+  std::string frame_id{};        ///< the world frame
+  std::string axes{};            ///< "enu_flu" or "mocap"
+  std::string implementation{};  ///< "Fast DDS 2.9.1"
+  std::vector<Ros2TopicView> topics{};
+  std::uint64_t frames_published = 0;
+  std::uint64_t frames_dropped = 0;  ///< the publishing thread was behind
+  std::uint64_t write_errors = 0;
+  std::vector<std::string> unnamed{};  ///< bodies with nothing to make a ROS name of
+  std::vector<std::string> clashes{};  ///< "A (as B)": bodies whose ROS name another body has
+};
+
 /// Everything GET /api/status returns.
 struct StatusView {
   double uptime_s = 0.0;  ///< seconds since the daemon started
   StationView station{};
   std::vector<VehicleView> vehicles{};
-  std::vector<Alert> alerts{};  ///< the daemon's own; the server appends the derived ones
-  ConnectionsView http{};       ///< the server's
+  std::vector<Alert> alerts{};     ///< the daemon's own; the server appends the derived ones
+  ConnectionsView http{};          ///< the server's
+  std::optional<Ros2View> ros2{};  ///< null without [ros2]
 };
 
 }  // namespace mocaplink::web
