@@ -179,7 +179,10 @@ void fill_setup(const core::VehicleStatus& in, core::HostTime now, VehicleView& 
 /// `agreement.reason`); nullopt once it has one.
 std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot,
                                             const core::VehicleStatus& in, const VehicleView& v) {
-  if (in.vehicle.agreement.verdict != core::AgreementVerdict::unknown) return std::nullopt;
+  // With a verdict: what it did not measure (mocap compared with itself), if anything.
+  if (in.vehicle.agreement.verdict != core::AgreementVerdict::unknown) {
+    return core::describe_unchecked(in.vehicle.agreement.sources);
+  }
   if (!in.enabled) return "the vehicle is disabled: nothing is sent to it or asked of it";
   if (v.link_state == LinkHealth::down) return "the link cannot send";
   if (!in.vehicle.heartbeat) return "no HEARTBEAT from the vehicle yet";
@@ -208,6 +211,11 @@ std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot
                   std::max(0.0, core::to_seconds(snapshot.time - *a.disagreeing_since)),
                   core::to_seconds(core::kAgreementHold));
     return std::string(text.data());
+  }
+  const core::EstimateSources& sources = a.sources;
+  if (sources.yaw.source == core::EstimateSource::unknown ||
+      sources.position.source == core::EstimateSource::unknown) {
+    return core::describe_unchecked(sources);  // no agreement until it is known
   }
   return "comparing the vehicle's estimate with mocap";
 }

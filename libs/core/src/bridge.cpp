@@ -17,6 +17,12 @@ std::string vehicle_field(std::size_t slot, std::string_view key) {
   return "vehicle[" + std::to_string(slot + 1) + "]." + std::string(key);
 }
 
+/// Where the vehicle's yaw and position come from, by the parameters its set-up list has read.
+EstimateSources sources_of(const VehicleSetup& setup) {
+  return estimate_sources(setup.autopilot(), setup.version(), setup.input(),
+                          [&setup](std::string_view name) { return setup.parameter(name); });
+}
+
 }  // namespace
 
 WorldAxisMapping default_world_axes() {
@@ -404,6 +410,7 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
     }
     if (a.settling) text += " (the vehicle booted moments ago: compared once it has settled)";
+    if (const auto unchecked = describe_unchecked(a.sources)) text += "; " + *unchecked;
     out.events.push_back({BridgeEventKind::agreement, now, index, v.spec.name, text});
   }
   if (reaction.clock_changed) {
@@ -435,6 +442,8 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
   Vehicle* found = live(vehicle);
   if (found == nullptr) return out;
   Vehicle& v = *found;
+  vehicle_events(vehicle, v.state.set_estimate_sources(sources_of(v.setup), received), received,
+                 out);
   const VehicleReaction reaction =
       v.state.on_message(message, received, &bodies_[v.body].published);
   if (reaction.timesync_reply && v.spec.enabled) {
@@ -516,6 +525,7 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     setup_target.armed = heard.heartbeat && heard.heartbeat->armed;
     v.setup.on_tick(now, setup_target, delay_inputs(capture_age_ms, heard), requests, notes);
     stream_events(i, notes, now, out, BridgeEventKind::vehicle_setup);
+    vehicle_events(i, v.state.set_estimate_sources(sources_of(v.setup), now), now, out);
     for (const mavlink::Message& m : requests) {
       v.sender.send(m, now, signing_now_10us(now), out.messages);
     }

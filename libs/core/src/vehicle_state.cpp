@@ -277,7 +277,13 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
     }
   } else {
     agreement_.disagreeing_since.reset();
-    if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_) verdict = AgreementVerdict::agree;
+    // Mocap compared with itself agrees whatever the axes: an agreement needs to know that
+    // (estimate_sources.hpp), and what comes from mocap is named unchecked, not agreed.
+    const bool sources_known = agreement_.sources.yaw.source != EstimateSource::unknown &&
+                               agreement_.sources.position.source != EstimateSource::unknown;
+    if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_ && sources_known) {
+      verdict = AgreementVerdict::agree;
+    }
   }
   agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
   agreement_.position_offset_m = vehicle_position_offset_m_;
@@ -286,6 +292,14 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
     agreement_.verdict = verdict;
     reaction.agreement_changed = true;
   }
+}
+
+VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& sources, HostTime now) {
+  VehicleReaction reaction;
+  if (sources == agreement_.sources) return reaction;
+  agreement_.sources = sources;
+  if (vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) update_agreement(now, reaction);
+  return reaction;
 }
 
 VehicleReaction VehicleState::on_tick(HostTime now) {

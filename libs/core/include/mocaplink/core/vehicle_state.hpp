@@ -33,9 +33,15 @@
 //               of its body at the message's arrival: yaw offset (deg, vehicle − mocap, wrapped to
 //               (−180, 180]) and position offset (m, 3-D distance). Catches a wrong axis mapping,
 //               a body not created nose-forward, or another vehicle's poses, before take-off.
+//               Never an agreement of mocap with itself (issue 48): where the vehicle's yaw or
+//               position comes from mocaplink (estimate_sources.hpp: EK3_SRC1_YAW = 6,
+//               EKF2_EV_CTRL bits; the Bridge passes them in from the set-up list), that
+//               comparison can still disagree (the vehicle does not follow our poses) but does
+//               not make an agreement, and while the deciding parameter is not known the verdict
+//               stays unknown rather than agree.
 //               The verdict (docs/messages.md "Agreement"):
 //                 agree     at once, when both offsets are known and within the thresholds
-//                           (default 10°, 0.3 m);
+//                           (default 10°, 0.3 m) and both sources are known;
 //                 disagree  only once every comparison for kAgreementHold (3 s) was beyond a
 //                           threshold: a vehicle's estimate jumps while its EKF aligns or resets
 //                           (a false alarm makes pilots ignore the real one); until then unknown,
@@ -60,6 +66,7 @@
 #include <string_view>
 
 #include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/estimate_sources.hpp"
 #include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/core/vehicle_clock.hpp"
@@ -172,6 +179,8 @@ struct Agreement {
   /// The vehicle's latest ATTITUDE / LOCAL_POSITION_NED came in its first kAgreementSettle of
   /// uptime: not compared (verdict unknown, offsets cleared).
   bool settling = false;
+  /// Where the vehicle's yaw and position come from (the Bridge's set_estimate_sources).
+  EstimateSources sources;
 };
 
 struct VehicleCounters {
@@ -235,6 +244,10 @@ class VehicleState {
   /// The origin must not go to this vehicle this boot (setup_rules.hpp origin_gate): a `sending`
   /// origin becomes `withheld` (origin_changed); a report of another origin leaves it so.
   VehicleReaction withhold_origin();
+
+  /// Where the vehicle's yaw and position come from, from its set-up list's parameters (the
+  /// Bridge, on every message and tick). A change re-judges the verdict (agreement_changed).
+  VehicleReaction set_estimate_sources(const EstimateSources& sources, HostTime now);
 
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
   void on_timesync_request_sent(std::int64_t ts1_ns);
