@@ -324,9 +324,9 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     v.clock.text = core::vehicle_clock_text(
         state.clock, state.heartbeat ? state.heartbeat->autopilot : std::uint8_t{0});
     v.origin = state.origin;
-    v.agreement =
-        AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
-                      state.agreement.position_offset_m, agreement_reason(snapshot, in, v)};
+    v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
+                                state.agreement.position_offset_m,
+                                agreement_reason(snapshot, in, v), state.agreement.tilt_offset_deg};
     const std::uint8_t autopilot = state.heartbeat ? state.heartbeat->autopilot : 0;
     for (const core::VehicleStream stream : core::kVehicleStreams) {
       // The estimator's only once the autopilot says which message it is.

@@ -168,6 +168,7 @@ void to_json(nlohmann::json& j, const VehicleView& vehicle) {
                        {"advice", optional_json(vehicle.origin_advice)}}},
                      {"agreement",
                       {{"verdict", text(to_string(vehicle.agreement.verdict))},
+                       {"tilt_offset_deg", optional_json(vehicle.agreement.tilt_offset_deg)},
                        {"yaw_offset_deg", optional_json(vehicle.agreement.yaw_offset_deg)},
                        {"position_offset_m", optional_json(vehicle.agreement.position_offset_m)},
                        {"reason", optional_json(vehicle.agreement.reason)}}},

@@ -405,6 +405,7 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
     std::string text = a.verdict == AgreementVerdict::agree      ? "estimate agrees"
                        : a.verdict == AgreementVerdict::disagree ? "estimate disagrees"
                                                                  : "estimate unknown";
+    if (a.tilt_offset_deg) text += ", tilt offset " + std::to_string(*a.tilt_offset_deg) + " deg";
     if (a.yaw_offset_deg) text += ", yaw offset " + std::to_string(*a.yaw_offset_deg) + " deg";
     if (a.position_offset_m) {
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";

@@ -132,10 +132,10 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
       const double mocap_yaw = euler_321_from_quaternion(mocap->q_ned_frd).yaw_rad;
       const double diff_rad = static_cast<double>(att->yaw) - mocap_yaw;
       const double offset = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
-      if (std::isfinite(offset)) {
-        vehicle_yaw_offset_deg_ = offset;
-        update_agreement(now, reaction);
-      }
+      const double tilt = tilt_offset_deg(mocap->q_ned_frd, att->roll, att->pitch);
+      if (std::isfinite(offset)) vehicle_yaw_offset_deg_ = offset;
+      if (std::isfinite(tilt)) vehicle_tilt_offset_deg_ = tilt;
+      if (std::isfinite(offset) || std::isfinite(tilt)) update_agreement(now, reaction);
     }
   } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
     if (settled(pos->time_boot_ms, now, reaction) && mocap != nullptr &&
@@ -250,6 +250,8 @@ bool VehicleState::settled(std::uint32_t time_boot_ms, HostTime now, VehicleReac
   // Not converged yet (or just rebooted): nothing of it is compared, nor kept for later.
   vehicle_yaw_offset_deg_.reset();
   vehicle_position_offset_m_.reset();
+  vehicle_tilt_offset_deg_.reset();
+  agreement_.tilt_offset_deg.reset();
   agreement_.yaw_offset_deg.reset();
   agreement_.position_offset_m.reset();
   agreement_.disagreeing_since.reset();
@@ -269,7 +271,9 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
       vehicle_yaw_offset_deg_ && std::abs(*vehicle_yaw_offset_deg_) > t.max_yaw_offset_deg;
   const bool pos_bad =
       vehicle_position_offset_m_ && *vehicle_position_offset_m_ > t.max_position_offset_m;
-  if (yaw_bad || pos_bad) {
+  const bool tilt_bad =
+      vehicle_tilt_offset_deg_ && *vehicle_tilt_offset_deg_ > t.max_tilt_offset_deg;
+  if (yaw_bad || pos_bad || tilt_bad) {
     // Disagree only once it has lasted kAgreementHold; unknown until then (header comment).
     if (!agreement_.disagreeing_since) agreement_.disagreeing_since = now;
     if (now - *agreement_.disagreeing_since >= kAgreementHold) {
@@ -281,10 +285,12 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
     // (estimate_sources.hpp), and what comes from mocap is named unchecked, not agreed.
     const bool sources_known = agreement_.sources.yaw.source != EstimateSource::unknown &&
                                agreement_.sources.position.source != EstimateSource::unknown;
-    if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_ && sources_known) {
+    if (vehicle_tilt_offset_deg_ && vehicle_yaw_offset_deg_ && vehicle_position_offset_m_ &&
+        sources_known) {
       verdict = AgreementVerdict::agree;
     }
   }
+  agreement_.tilt_offset_deg = vehicle_tilt_offset_deg_;
   agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
   agreement_.position_offset_m = vehicle_position_offset_m_;
   agreement_.updated = now;
@@ -298,7 +304,9 @@ VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& source
   VehicleReaction reaction;
   if (sources == agreement_.sources) return reaction;
   agreement_.sources = sources;
-  if (vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) update_agreement(now, reaction);
+  if (vehicle_tilt_offset_deg_ || vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) {
+    update_agreement(now, reaction);
+  }
   return reaction;
 }
 

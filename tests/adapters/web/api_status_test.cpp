@@ -115,6 +115,7 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_EQ(quad["timesync"], (json{{"state", "synced"}, {"offset_ms", 1234.5}, {"rtt_ms", 0.8}}));
   EXPECT_EQ(quad["origin"], (json{{"state", "confirmed"}, {"advice", nullptr}}));
   EXPECT_EQ(quad["agreement"], (json{{"verdict", "agree"},
+                                     {"tilt_offset_deg", 1.5},
                                      {"yaw_offset_deg", 0.4},
                                      {"position_offset_m", 0.012},
                                      {"reason", nullptr}}));

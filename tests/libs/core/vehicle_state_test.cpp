@@ -470,6 +470,41 @@ TEST(VehicleAgreement, SourcesLearntLaterJudgeTheVerdictAgain) {
   EXPECT_FALSE(v.set_estimate_sources(own_sensors(), at_ms(1'200)).agreement_changed);
 }
 
+TEST(VehicleAgreement, TiltIsTheGravityDirectionWithoutYaw) {
+  // Mocap level with its nose east; the vehicle pitched 3° nose up (a sloped floor) and rolled
+  // 2°: the gravity directions differ by acos(cos 3° cos 2°) = 3.6046°, whatever the yaw.
+  VehicleState v = checkable_vehicle();
+  const auto mocap = mocap_at({0.0, 0.0, 0.0}, kPi / 2);
+  mavlink::Attitude a = attitude(kPi / 2);
+  a.roll = static_cast<float>(2.0 * kPi / 180.0);
+  a.pitch = static_cast<float>(3.0 * kPi / 180.0);
+  v.on_message(from(1, 1, a), at_ms(0), &mocap);
+  v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), at_ms(0), &mocap);
+  const double want = std::acos(std::cos(3.0 * kPi / 180.0) * std::cos(2.0 * kPi / 180.0));
+  EXPECT_NEAR(*v.agreement().tilt_offset_deg, want * 180.0 / kPi, 1e-4);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
+}
+
+TEST(VehicleAgreement, UpAxisMistakeWithExternalNavYawDisagreesOnGravity) {
+  // Issue 48 as reported: a Z-up Vicon configured up = "+y", the vehicle level with its nose on
+  // mocap +x, EKF3 yaw and position from ExternalNav (so both match mocap). By hand: the world
+  // mapping's rows are N = +x, E = D x N = -y x +x = +z, D = -y; the body mapping FLU -> FRD is
+  // diag(1, -1, -1); R_ned_frd = W * I * B = [[1,0,0],[0,0,-1],[0,1,0]]: mocap's body down is
+  // its right (+y row 2): 90° of roll, where the vehicle's IMU says level.
+  VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(
+      {{EstimateSource::mocap, "EK3_SRC1_YAW = 6"}, {EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}},
+      HostTime{});
+  Eigen::Matrix3d r;
+  r << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  auto mocap = mocap_at({0.0, 0.0, 0.0}, 0.0);
+  mocap.q_ned_frd = Eigen::Quaterniond(r);
+  // The vehicle reports mocap's yaw (0: the nose's heading is unchanged by this mistake).
+  EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 0, 5'000, -60'000, AgreementVerdict::disagree), 3'000);
+  EXPECT_NEAR(*v.agreement().tilt_offset_deg, 90.0, 1e-4);
+  EXPECT_NEAR(*v.agreement().yaw_offset_deg, 0.0, 1e-4);
+}
+
 TEST(VehicleAgreement, PositionOffsetDisagreesAndLostMocapIsIgnored) {
   VehicleState v(VehicleStateConfig{});
   auto mocap = mocap_at({0.0, 0.0, 0.0}, 0.0);

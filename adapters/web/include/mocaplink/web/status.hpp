@@ -138,6 +138,8 @@ struct AgreementView {
   /// While the verdict is unknown: why, one sentence ("no ATTITUDE from the vehicle after
   /// asking: is this port's MAVLink enabled?"); null once there is a verdict.
   std::optional<std::string> reason{};
+  /// Angle between the vehicle's gravity direction (its IMU's roll and pitch) and mocap's, deg.
+  std::optional<double> tilt_offset_deg{};
 };
 
 /// The vehicle's autopilot (core::VehicleSetup): "px4", "ardupilot", "other" or "unknown", and
