@@ -134,7 +134,12 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
       const double offset = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
       const double tilt = tilt_offset_deg(mocap->q_ned_frd, att->roll, att->pitch);
       if (std::isfinite(offset)) vehicle_yaw_offset_deg_ = offset;
-      if (std::isfinite(tilt)) vehicle_tilt_offset_deg_ = tilt;
+      if (std::isfinite(tilt)) {
+        vehicle_tilt_offset_deg_ = tilt;
+        agreement_.roll_rad = att->roll;
+        agreement_.pitch_rad = att->pitch;
+        agreement_.yaw_rad = att->yaw;
+      }
       if (std::isfinite(offset) || std::isfinite(tilt)) update_agreement(now, reaction);
     }
   } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
@@ -257,6 +262,7 @@ bool VehicleState::settled(std::uint32_t time_boot_ms, HostTime now, VehicleReac
   agreement_.disagreeing_since.reset();
   agreement_.settling = true;
   agreement_.updated = now;
+  agreement_.fix.reset();
   if (agreement_.verdict != AgreementVerdict::unknown) {
     agreement_.verdict = AgreementVerdict::unknown;
     reaction.agreement_changed = true;
@@ -296,8 +302,13 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
   agreement_.updated = now;
   if (verdict != agreement_.verdict) {
     agreement_.verdict = verdict;
+    agreement_.fix.reset();
     reaction.agreement_changed = true;
   }
+}
+
+void VehicleState::set_axis_fix(AxisFix fix) {
+  if (agreement_.verdict == AgreementVerdict::disagree) agreement_.fix = std::move(fix);
 }
 
 VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& sources, HostTime now) {
@@ -307,6 +318,8 @@ VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& source
   if (vehicle_tilt_offset_deg_ || vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) {
     update_agreement(now, reaction);
   }
+  // A verdict's sentence names what it did not check: that changed, so it is news.
+  if (agreement_.verdict != AgreementVerdict::unknown) reaction.agreement_changed = true;
   return reaction;
 }
 

@@ -118,7 +118,8 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
                                      {"tilt_offset_deg", 1.5},
                                      {"yaw_offset_deg", 0.4},
                                      {"position_offset_m", 0.012},
-                                     {"reason", nullptr}}));
+                                     {"reason", nullptr},
+                                     {"fix", nullptr}}));
   const json& rover = s["vehicles"][1];
   EXPECT_EQ(rover["timesync"]["state"], "off");
   EXPECT_TRUE(rover["timesync"]["offset_ms"].is_null());

@@ -162,6 +162,19 @@ TEST(BridgeViews, AnUnknownAgreementSaysWhy) {
             "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6)");
   in.vehicle.agreement.sources.yaw = {core::EstimateSource::independent, "EK3_SRC1_YAW = 1"};
   EXPECT_FALSE(builder.build(s, context).vehicles[0].agreement.reason);
+  EXPECT_FALSE(builder.build(s, context).vehicles[0].agreement.fix);
+  // A disagreement names its fix, in the reason and as its own object.
+  in.vehicle.agreement.verdict = core::AgreementVerdict::disagree;
+  core::AxisFix fix;
+  fix.kind = core::AxisFixKind::fix;
+  fix.lines = {"[mocap] up = \"+z\""};
+  fix.text = "fix: [mocap] up = \"+z\" (then tilt 0.0°)";
+  in.vehicle.agreement.fix = fix;
+  const VehicleView d = builder.build(s, context).vehicles[0];
+  EXPECT_EQ(d.agreement.reason, "fix: [mocap] up = \"+z\" (then tilt 0.0°)");
+  ASSERT_TRUE(d.agreement.fix);
+  EXPECT_EQ(d.agreement.fix->kind, "fix");
+  EXPECT_EQ(d.agreement.fix->lines, fix.lines);
 }
 
 TEST(BridgeViews, SendRateIsTheCoresWhateverWasAskedBefore) {

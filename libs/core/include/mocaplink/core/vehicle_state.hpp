@@ -192,6 +192,13 @@ struct Agreement {
   bool settling = false;
   /// Where the vehicle's yaw and position come from (the Bridge's set_estimate_sources).
   EstimateSources sources;
+  /// The vehicle's latest ATTITUDE roll and pitch (rad) that was compared: its gravity.
+  std::optional<double> roll_rad;
+  std::optional<double> pitch_rad;
+  std::optional<double> yaw_rad;  ///< its yaw: a heading of its own when sources.yaw is independent
+  /// While the verdict is disagree: the axis settings that make mocap agree with the vehicle at
+  /// rest (the Bridge's set_axis_fix, axis_fix.hpp); cleared with the verdict.
+  std::optional<AxisFix> fix;
 };
 
 struct VehicleCounters {
@@ -259,6 +266,9 @@ class VehicleState {
   /// Where the vehicle's yaw and position come from, from its set-up list's parameters (the
   /// Bridge, on every message and tick). A change re-judges the verdict (agreement_changed).
   VehicleReaction set_estimate_sources(const EstimateSources& sources, HostTime now);
+
+  /// The Bridge's axis fix for the current disagreement (ignored unless the verdict is disagree).
+  void set_axis_fix(AxisFix fix);
 
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
   void on_timesync_request_sent(std::int64_t ts1_ns);
