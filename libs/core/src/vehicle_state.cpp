@@ -260,13 +260,15 @@ bool VehicleState::settled(std::uint32_t time_boot_ms, HostTime now, VehicleReac
   agreement_.yaw_offset_deg.reset();
   agreement_.position_offset_m.reset();
   agreement_.disagreeing_since.reset();
-  agreement_.settling = true;
   agreement_.updated = now;
   agreement_.fix.reset();
-  if (agreement_.verdict != AgreementVerdict::unknown) {
-    agreement_.verdict = AgreementVerdict::unknown;
+  // Settling is news even when the verdict already was unknown (a reboot seen first in TIMESYNC
+  // makes the set-up list read again, and its sources unknown, before this message).
+  if (agreement_.verdict != AgreementVerdict::unknown || !agreement_.settling) {
     reaction.agreement_changed = true;
   }
+  agreement_.verdict = AgreementVerdict::unknown;
+  agreement_.settling = true;
   return false;
 }
 
