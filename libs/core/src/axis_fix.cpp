@@ -190,7 +190,8 @@ AxisFix find_axis_fix(const Eigen::Matrix3d& r_world_body, const AxisSettings& c
     out.settings = current;
     out.tilt_residual_deg = best->tilt_deg;
     out.heading_residual_deg = best->heading_deg;
-    out.text = "the axis settings agree with the vehicle at rest (" + residual_text(*best) + ")";
+    out.text = "no axis change needed: the settings fit the vehicle at rest (" +
+               residual_text(*best) + ")";
     return out;
   }
   if (best != nullptr) {

@@ -60,8 +60,8 @@ TEST(AxisFix, ViconZUpRightSetUpAgrees) {
   EXPECT_EQ(fix.kind, AxisFixKind::agrees);
   EXPECT_TRUE(fix.lines.empty());
   EXPECT_EQ(fix.text,
-            "the axis settings agree with the vehicle at rest (tilt 0.0°, nose unchecked: the "
-            "vehicle has no heading of its own)");
+            "no axis change needed: the settings fit the vehicle at rest (tilt 0.0°, nose "
+            "unchecked: the vehicle has no heading of its own)");
 }
 
 TEST(AxisFix, ViconWithTheYUpSettingIsNamed) {
