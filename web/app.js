@@ -284,10 +284,12 @@ function renderVehicle(card, v, fromPatch = false) {
   box.className = `span2 v-agreement-box ${ag.verdict}`;
   // Unknown: say why (the daemon's reason: no heartbeat, body not tracked, what it asked the
   // vehicle for and what came of it), with the offsets known so far.
-  const offsets = `yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}`;
+  // With a verdict the reason says what was not checked (mocap compared with itself) and, for a
+  // disagreement, the axis settings that fix it.
+  const offsets = `tilt ${num(ag.tilt_offset_deg, 1, '°')} · yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}`;
   $('.v-agreement', r).textContent = ag.verdict === 'unknown'
-    ? `unknown: ${ag.reason || 'waiting for the vehicle\'s estimate'}${ag.yaw_offset_deg === null && ag.position_offset_m === null ? '' : ` · ${offsets}`}`
-    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · ${offsets}`;
+    ? `unknown: ${ag.reason || 'waiting for the vehicle\'s estimate'}${ag.yaw_offset_deg === null && ag.position_offset_m === null && ag.tilt_offset_deg == null ? '' : ` · ${offsets}`}`
+    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · ${offsets}${ag.reason ? ` · ${ag.reason}` : ''}`;
 
   // Inputs: never overwrite what the user is doing.
   if (!card.dragging && document.activeElement !== card.rate) {

@@ -93,6 +93,11 @@ std::optional<core::BridgeConfig> make_bridge_config(const config::Config& cfg,
     return std::nullopt;
   }
   out.world = *world;
+  // The up axis each system streams by default (docs/sources.md), for the agreement's axis fix.
+  const std::string& scheme = cfg.mocap.source.scheme;
+  if (scheme == "vicon" || scheme == "qtm" || scheme == "vicon-udp")
+    out.source_up = core::axis::pos_z;
+  if (scheme == "natnet") out.source_up = core::axis::pos_y;
   out.origin = cfg.origin;
   out.tracking = cfg.tracking;
   for (const config::Vehicle& vehicle : cfg.vehicles) out.vehicles.push_back(vehicle.spec);

@@ -176,10 +176,18 @@ void fill_setup(const core::VehicleStatus& in, core::HostTime now, VehicleView& 
 }
 
 /// Why the agreement check has no verdict yet, the first cause that applies (docs/api.md
-/// `agreement.reason`); nullopt once it has one.
+/// `agreement.reason`); with a verdict, its fix and what it did not check (nullopt if neither).
 std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot,
                                             const core::VehicleStatus& in, const VehicleView& v) {
-  if (in.vehicle.agreement.verdict != core::AgreementVerdict::unknown) return std::nullopt;
+  // With a verdict: what it did not measure (mocap compared with itself), if anything.
+  // A disagreement also names its fix first (axis_fix.hpp).
+  if (in.vehicle.agreement.verdict != core::AgreementVerdict::unknown) {
+    const auto& fix = in.vehicle.agreement.fix;
+    const auto unchecked = core::describe_unchecked(in.vehicle.agreement.sources);
+    if (fix && unchecked) return fix->text + "; " + *unchecked;
+    if (fix) return fix->text;
+    return unchecked;
+  }
   if (!in.enabled) return "the vehicle is disabled: nothing is sent to it or asked of it";
   if (v.link_state == LinkHealth::down) return "the link cannot send";
   if (!in.vehicle.heartbeat) return "no HEARTBEAT from the vehicle yet";
@@ -208,6 +216,11 @@ std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot
                   std::max(0.0, core::to_seconds(snapshot.time - *a.disagreeing_since)),
                   core::to_seconds(core::kAgreementHold));
     return std::string(text.data());
+  }
+  const core::EstimateSources& sources = a.sources;
+  if (sources.yaw.source == core::EstimateSource::unknown ||
+      sources.position.source == core::EstimateSource::unknown) {
+    return core::describe_unchecked(sources);  // no agreement until it is known
   }
   return "comparing the vehicle's estimate with mocap";
 }
@@ -316,9 +329,17 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     v.clock.text = core::vehicle_clock_text(
         state.clock, state.heartbeat ? state.heartbeat->autopilot : std::uint8_t{0});
     v.origin = state.origin;
-    v.agreement =
-        AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
-                      state.agreement.position_offset_m, agreement_reason(snapshot, in, v)};
+    v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
+                                state.agreement.position_offset_m,
+                                agreement_reason(snapshot, in, v), state.agreement.tilt_offset_deg};
+    if (const auto& fix = state.agreement.fix) {
+      v.agreement.fix = AxisFixView{std::string(core::to_string(fix->kind)),
+                                    fix->lines,
+                                    fix->alternative_lines,
+                                    fix->tilt_residual_deg,
+                                    fix->heading_residual_deg,
+                                    fix->text};
+    }
     const std::uint8_t autopilot = state.heartbeat ? state.heartbeat->autopilot : 0;
     for (const core::VehicleStream stream : core::kVehicleStreams) {
       // The estimator's only once the autopilot says which message it is.

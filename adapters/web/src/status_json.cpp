@@ -10,6 +10,16 @@ nlohmann::json optional_json(const std::optional<T>& value) {
   return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
 }
 
+nlohmann::json fix_json(const std::optional<AxisFixView>& fix) {
+  if (!fix) return nullptr;
+  return {{"kind", fix->kind},
+          {"lines", fix->lines},
+          {"alternative_lines", fix->alternative_lines},
+          {"tilt_residual_deg", fix->tilt_residual_deg},
+          {"heading_residual_deg", optional_json(fix->heading_residual_deg)},
+          {"text", fix->text}};
+}
+
 std::string text(std::string_view s) {
   return std::string(s);
 }
@@ -174,9 +184,11 @@ void to_json(nlohmann::json& j, const VehicleView& vehicle) {
                        {"advice", optional_json(vehicle.origin_advice)}}},
                      {"agreement",
                       {{"verdict", text(to_string(vehicle.agreement.verdict))},
+                       {"tilt_offset_deg", optional_json(vehicle.agreement.tilt_offset_deg)},
                        {"yaw_offset_deg", optional_json(vehicle.agreement.yaw_offset_deg)},
                        {"position_offset_m", optional_json(vehicle.agreement.position_offset_m)},
-                       {"reason", optional_json(vehicle.agreement.reason)}}},
+                       {"reason", optional_json(vehicle.agreement.reason)},
+                       {"fix", fix_json(vehicle.agreement.fix)}}},
                      {"streams", vehicle.streams},
                      {"autopilot",
                       {{"name", vehicle.autopilot.name},

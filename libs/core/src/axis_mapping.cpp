@@ -68,8 +68,11 @@ std::string to_string(const North& north) {
   return std::string(kAnglePrefix) + std::string(buffer.data(), result.ptr);
 }
 
-WorldAxisMapping::WorldAxisMapping(const Eigen::Matrix3d& r_ned_world)
-    : r_ned_world_(r_ned_world), q_ned_world_(canonical_quaternion(r_ned_world)) {}
+WorldAxisMapping::WorldAxisMapping(SignedAxis up, North north, const Eigen::Matrix3d& r_ned_world)
+    : up_(up),
+      north_(north),
+      r_ned_world_(r_ned_world),
+      q_ned_world_(canonical_quaternion(r_ned_world)) {}
 
 AxisMappingResult<WorldAxisMapping> WorldAxisMapping::parse(std::string_view up,
                                                             std::string_view north) {
@@ -113,7 +116,7 @@ AxisMappingResult<WorldAxisMapping> WorldAxisMapping::make(SignedAxis up, const 
   r_ned_world.row(0) = north_w.transpose();
   r_ned_world.row(1) = east_w.transpose();
   r_ned_world.row(2) = down_w.transpose();
-  return WorldAxisMapping(r_ned_world);
+  return WorldAxisMapping(up, north, r_ned_world);
 }
 
 BodyAxisMapping::BodyAxisMapping(SignedAxis forward, SignedAxis up,

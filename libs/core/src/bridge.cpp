@@ -17,6 +17,32 @@ std::string vehicle_field(std::size_t slot, std::string_view key) {
   return "vehicle[" + std::to_string(slot + 1) + "]." + std::string(key);
 }
 
+/// Where the vehicle's yaw and position come from, by the parameters its set-up list has read.
+EstimateSources sources_of(const VehicleSetup& setup) {
+  return estimate_sources(setup.autopilot(), setup.version(), setup.input(),
+                          [&setup](std::string_view name) { return setup.parameter(name); });
+}
+
+/// A disagreement at rest: the axis settings that make mocap agree with the vehicle (issue 48).
+/// The raw orientation undoes the configured mapping (R_world_body = Wᵀ · R_ned_frd · Bᵀ); the
+/// vehicle's yaw is a heading only where it is its own (a compass), never mocap's fed back.
+void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
+                   std::optional<SignedAxis> source_up, const BodyEstimate& mocap,
+                   VehicleState& state) {
+  const Agreement& a = state.agreement();
+  if (a.verdict != AgreementVerdict::disagree || !a.roll_rad || !a.pitch_rad ||
+      mocap.state != TrackingState::tracking) {
+    return;
+  }
+  const Eigen::Matrix3d r_ned_frd = mocap.q_ned_frd.normalized().toRotationMatrix();
+  const Eigen::Matrix3d raw =
+      world.r_ned_world().transpose() * r_ned_frd * body.r_body_frd().transpose();
+  VehicleAtRest vehicle{*a.roll_rad, *a.pitch_rad, std::nullopt};
+  if (a.sources.yaw.source == EstimateSource::independent) vehicle.heading_rad = a.yaw_rad;
+  const AxisSettings current{world.up(), world.north(), body.forward(), body.up()};
+  state.set_axis_fix(find_axis_fix(raw, current, vehicle, source_up));
+}
+
 }  // namespace
 
 WorldAxisMapping default_world_axes() {
@@ -434,11 +460,14 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
     std::string text = a.verdict == AgreementVerdict::agree      ? "estimate agrees"
                        : a.verdict == AgreementVerdict::disagree ? "estimate disagrees"
                                                                  : "estimate unknown";
+    if (a.tilt_offset_deg) text += ", tilt offset " + std::to_string(*a.tilt_offset_deg) + " deg";
     if (a.yaw_offset_deg) text += ", yaw offset " + std::to_string(*a.yaw_offset_deg) + " deg";
     if (a.position_offset_m) {
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
     }
     if (a.settling) text += " (the vehicle booted moments ago: compared once it has settled)";
+    if (a.fix) text += "; " + a.fix->text;
+    if (const auto unchecked = describe_unchecked(a.sources)) text += "; " + *unchecked;
     out.events.push_back({BridgeEventKind::agreement, now, index, v.spec.name, text});
   }
   if (reaction.clock_changed) {
@@ -470,8 +499,16 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
   Vehicle* found = live(vehicle);
   if (found == nullptr) return out;
   Vehicle& v = *found;
-  const VehicleReaction reaction =
-      v.state.on_message(message, received, &bodies_[v.body].published);
+  const BodyEstimate& mocap = bodies_[v.body].published;
+  const VehicleReaction sources = v.state.set_estimate_sources(sources_of(v.setup), received);
+  if (sources.agreement_changed) {
+    name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, mocap, v.state);
+  }
+  vehicle_events(vehicle, sources, received, out);
+  const VehicleReaction reaction = v.state.on_message(message, received, &mocap);
+  if (reaction.agreement_changed) {
+    name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, mocap, v.state);
+  }
   if (reaction.timesync_reply && v.spec.enabled) {
     v.sender.send(*reaction.timesync_reply, received, signing_now_10us(received), out.messages);
   }
@@ -551,6 +588,12 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     setup_target.armed = heard.heartbeat && heard.heartbeat->armed;
     v.setup.on_tick(now, setup_target, delay_inputs(capture_age_ms, heard), requests, notes);
     stream_events(i, notes, now, out, BridgeEventKind::vehicle_setup);
+    const VehicleReaction sources = v.state.set_estimate_sources(sources_of(v.setup), now);
+    if (sources.agreement_changed) {
+      name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, bodies_[v.body].published,
+                    v.state);
+    }
+    vehicle_events(i, sources, now, out);
     for (const mavlink::Message& m : requests) {
       v.sender.send(m, now, signing_now_10us(now), out.messages);
     }

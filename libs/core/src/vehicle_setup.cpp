@@ -213,6 +213,16 @@ VehicleSetup::Param* VehicleSetup::find(std::string_view name) {
   return it == params_.end() ? nullptr : &*it;
 }
 
+SetupInput VehicleSetup::input() const {
+  return setup_input(family_, messages_);
+}
+
+std::optional<double> VehicleSetup::parameter(std::string_view name) const {
+  const auto it =
+      std::find_if(params_.begin(), params_.end(), [&](const Param& p) { return p.name == name; });
+  return it == params_.end() ? std::nullopt : it->value;
+}
+
 bool VehicleSetup::bytewise() const {
   if (capabilities_) {
     if ((*capabilities_ & kCapBytewise) != 0) return true;

@@ -132,10 +132,15 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
       const double mocap_yaw = euler_321_from_quaternion(mocap->q_ned_frd).yaw_rad;
       const double diff_rad = static_cast<double>(att->yaw) - mocap_yaw;
       const double offset = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
-      if (std::isfinite(offset)) {
-        vehicle_yaw_offset_deg_ = offset;
-        update_agreement(now, reaction);
+      const double tilt = tilt_offset_deg(mocap->q_ned_frd, att->roll, att->pitch);
+      if (std::isfinite(offset)) vehicle_yaw_offset_deg_ = offset;
+      if (std::isfinite(tilt)) {
+        vehicle_tilt_offset_deg_ = tilt;
+        agreement_.roll_rad = att->roll;
+        agreement_.pitch_rad = att->pitch;
+        agreement_.yaw_rad = att->yaw;
       }
+      if (std::isfinite(offset) || std::isfinite(tilt)) update_agreement(now, reaction);
     }
   } else if (const auto* pos = std::get_if<mavlink::LocalPositionNed>(&message.message)) {
     if (settled(pos->time_boot_ms, now, reaction) && mocap != nullptr &&
@@ -250,15 +255,20 @@ bool VehicleState::settled(std::uint32_t time_boot_ms, HostTime now, VehicleReac
   // Not converged yet (or just rebooted): nothing of it is compared, nor kept for later.
   vehicle_yaw_offset_deg_.reset();
   vehicle_position_offset_m_.reset();
+  vehicle_tilt_offset_deg_.reset();
+  agreement_.tilt_offset_deg.reset();
   agreement_.yaw_offset_deg.reset();
   agreement_.position_offset_m.reset();
   agreement_.disagreeing_since.reset();
-  agreement_.settling = true;
   agreement_.updated = now;
-  if (agreement_.verdict != AgreementVerdict::unknown) {
-    agreement_.verdict = AgreementVerdict::unknown;
+  agreement_.fix.reset();
+  // Settling is news even when the verdict already was unknown (a reboot seen first in TIMESYNC
+  // makes the set-up list read again, and its sources unknown, before this message).
+  if (agreement_.verdict != AgreementVerdict::unknown || !agreement_.settling) {
     reaction.agreement_changed = true;
   }
+  agreement_.verdict = AgreementVerdict::unknown;
+  agreement_.settling = true;
   return false;
 }
 
@@ -269,7 +279,9 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
       vehicle_yaw_offset_deg_ && std::abs(*vehicle_yaw_offset_deg_) > t.max_yaw_offset_deg;
   const bool pos_bad =
       vehicle_position_offset_m_ && *vehicle_position_offset_m_ > t.max_position_offset_m;
-  if (yaw_bad || pos_bad) {
+  const bool tilt_bad =
+      vehicle_tilt_offset_deg_ && *vehicle_tilt_offset_deg_ > t.max_tilt_offset_deg;
+  if (yaw_bad || pos_bad || tilt_bad) {
     // Disagree only once it has lasted kAgreementHold; unknown until then (header comment).
     if (!agreement_.disagreeing_since) agreement_.disagreeing_since = now;
     if (now - *agreement_.disagreeing_since >= kAgreementHold) {
@@ -277,15 +289,40 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
     }
   } else {
     agreement_.disagreeing_since.reset();
-    if (vehicle_yaw_offset_deg_ && vehicle_position_offset_m_) verdict = AgreementVerdict::agree;
+    // Mocap compared with itself agrees whatever the axes: an agreement needs to know that
+    // (estimate_sources.hpp), and what comes from mocap is named unchecked, not agreed.
+    const bool sources_known = agreement_.sources.yaw.source != EstimateSource::unknown &&
+                               agreement_.sources.position.source != EstimateSource::unknown;
+    if (vehicle_tilt_offset_deg_ && vehicle_yaw_offset_deg_ && vehicle_position_offset_m_ &&
+        sources_known) {
+      verdict = AgreementVerdict::agree;
+    }
   }
+  agreement_.tilt_offset_deg = vehicle_tilt_offset_deg_;
   agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
   agreement_.position_offset_m = vehicle_position_offset_m_;
   agreement_.updated = now;
   if (verdict != agreement_.verdict) {
     agreement_.verdict = verdict;
+    agreement_.fix.reset();
     reaction.agreement_changed = true;
   }
+}
+
+void VehicleState::set_axis_fix(AxisFix fix) {
+  if (agreement_.verdict == AgreementVerdict::disagree) agreement_.fix = std::move(fix);
+}
+
+VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& sources, HostTime now) {
+  VehicleReaction reaction;
+  if (sources == agreement_.sources) return reaction;
+  agreement_.sources = sources;
+  if (vehicle_tilt_offset_deg_ || vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) {
+    update_agreement(now, reaction);
+  }
+  // A verdict's sentence names what it did not check: that changed, so it is news.
+  if (agreement_.verdict != AgreementVerdict::unknown) reaction.agreement_changed = true;
+  return reaction;
 }
 
 VehicleReaction VehicleState::on_tick(HostTime now) {

@@ -115,9 +115,11 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_EQ(quad["timesync"], (json{{"state", "synced"}, {"offset_ms", 1234.5}, {"rtt_ms", 0.8}}));
   EXPECT_EQ(quad["origin"], (json{{"state", "confirmed"}, {"advice", nullptr}}));
   EXPECT_EQ(quad["agreement"], (json{{"verdict", "agree"},
+                                     {"tilt_offset_deg", 1.5},
                                      {"yaw_offset_deg", 0.4},
                                      {"position_offset_m", 0.012},
-                                     {"reason", nullptr}}));
+                                     {"reason", nullptr},
+                                     {"fix", nullptr}}));
   const json& rover = s["vehicles"][1];
   EXPECT_EQ(rover["timesync"]["state"], "off");
   EXPECT_TRUE(rover["timesync"]["offset_ms"].is_null());

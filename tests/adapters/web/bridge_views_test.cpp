@@ -136,6 +136,13 @@ TEST(BridgeViews, AnUnknownAgreementSaysWhy) {
   EXPECT_EQ(v.sent.at("REQUEST_DATA_STREAM"), 3U);
   // Both messages arriving: the vehicle settling after its boot, then a disagreement on hold.
   for (auto& stream : in.streams.streams) stream.state = core::StreamState::arriving;
+  // Issue 48: until the set-up list says where its yaw and position come from, no agreement.
+  in.vehicle.agreement.sources.yaw = {core::EstimateSource::unknown, "EK3_SRC1_YAW"};
+  in.vehicle.agreement.sources.position = {core::EstimateSource::independent, "EK3_SRC1_POSXY = 3"};
+  EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
+            "yaw not checkable yet: EK3_SRC1_YAW not read from the vehicle (does its yaw come from "
+            "mocap?)");
+  in.vehicle.agreement.sources.yaw = {core::EstimateSource::mocap, "EK3_SRC1_YAW = 6"};
   EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
             "comparing the vehicle's estimate with mocap");
   in.vehicle.agreement.settling = true;
@@ -150,7 +157,24 @@ TEST(BridgeViews, AnUnknownAgreementSaysWhy) {
   EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
             "no HEARTBEAT from the vehicle yet");
   in.vehicle.agreement.verdict = core::AgreementVerdict::agree;
+  // With a verdict the reason names what it did not measure.
+  EXPECT_EQ(builder.build(s, context).vehicles[0].agreement.reason,
+            "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6)");
+  in.vehicle.agreement.sources.yaw = {core::EstimateSource::independent, "EK3_SRC1_YAW = 1"};
   EXPECT_FALSE(builder.build(s, context).vehicles[0].agreement.reason);
+  EXPECT_FALSE(builder.build(s, context).vehicles[0].agreement.fix);
+  // A disagreement names its fix, in the reason and as its own object.
+  in.vehicle.agreement.verdict = core::AgreementVerdict::disagree;
+  core::AxisFix fix;
+  fix.kind = core::AxisFixKind::fix;
+  fix.lines = {"[mocap] up = \"+z\""};
+  fix.text = "fix: [mocap] up = \"+z\" (then tilt 0.0°)";
+  in.vehicle.agreement.fix = fix;
+  const VehicleView d = builder.build(s, context).vehicles[0];
+  EXPECT_EQ(d.agreement.reason, "fix: [mocap] up = \"+z\" (then tilt 0.0°)");
+  ASSERT_TRUE(d.agreement.fix);
+  EXPECT_EQ(d.agreement.fix->kind, "fix");
+  EXPECT_EQ(d.agreement.fix->lines, fix.lines);
 }
 
 TEST(BridgeViews, SendRateIsTheCoresWhateverWasAskedBefore) {

@@ -84,7 +84,7 @@ FakeBackend::FakeBackend() {
   q.heartbeat = HeartbeatView{"quadrotor", "px4", false, "POSCTL", 0.2};
   q.timesync = TimesyncView{TimesyncState::synced, 1234.5, 0.8};
   q.origin = OriginState::confirmed;
-  q.agreement = AgreementView{AgreementVerdict::agree, 0.4, 0.012};
+  q.agreement = AgreementView{AgreementVerdict::agree, 0.4, 0.012, std::nullopt, 1.5};
   // quad1's set-up list (what core::VehicleSetup reports for a PX4 1.14 left at its GPS defaults).
   q.autopilot = AutopilotView{"px4", "1.14.3", "px4"};
   q.setup.state = "blocked";

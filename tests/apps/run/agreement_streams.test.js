@@ -7,7 +7,10 @@
 //   "quad" (ArduPilot, sysid 1), first boot: refuses SET_MESSAGE_INTERVAL for ATTITUDE
 //   (UNSUPPORTED) and streams it once asked with REQUEST_DATA_STREAM EXTRA1; ignores the first two
 //   SET_MESSAGE_INTERVAL for LOCAL_POSITION_NED and accepts the third (confirmation 2). It reports
-//   its yaw as mocap's: the verdict must become `agree`.
+//   its yaw as mocap's, its tilt as the body's, and answers the set-up list's parameter reads as
+//   an EKF3 taking yaw and position from ExternalNav (EK3_SRC1_YAW, EK3_SRC1_POSXY 6; the rest 0):
+//   the verdict must become `agree` on gravity, its reason naming yaw and position as not
+//   checkable (issue 48).
 //   Then it reboots (its boot clock starts again, in TIMESYNC and the messages; its rates are
 //   gone): mocaplink must ask again (confirmation 0), the vehicle accepts both, and now reports a
 //   yaw 90° off (a rigid body defined 90° off): `unknown` while the rebooted vehicle settles, then
@@ -29,6 +32,8 @@ const REQUEST_DATA_STREAM = 66;
 const COMMAND_ACK = 77;
 const SET_MESSAGE_INTERVAL = 511;
 const EKF_STATUS_REPORT = 193;
+const PARAM_REQUEST_READ = 20;
+const EXTERNAL_NAV = ['EK3_SRC1_YAW', 'EK3_SRC1_POSXY'];
 
 /// A scripted ArduPilot on `vehicle` (a h.UdpVehicle) with system id `sysid`. `script` decides
 /// the answer to each SET_MESSAGE_INTERVAL: (messageId, confirmation, boot) → MAV_RESULT or null
@@ -68,6 +73,16 @@ function scriptedVehicle(vehicle, sysid, script, { mute = false } = {}) {
       if (result === null) return;
       ack(SET_MESSAGE_INTERVAL, result, packet);
       if (result === 0 && !mute) s.intervals.set(messageId, m._param2 / 1000);
+    } else if (id === PARAM_REQUEST_READ && m.targetSystem === sysid) {
+      // EKF3 with yaw and position from ExternalNav (issue 48); every other parameter 0.
+      const name = m.paramId.replace(/\0+$/, '');
+      const v = new common.ParamValue();
+      v.paramId = name;
+      v.paramType = 2;  // INT8; ArduPilot sends the value cast to float
+      v.paramValue = EXTERNAL_NAV.includes(name) ? 6 : 0;
+      v.paramCount = 1;
+      v.paramIndex = 65535;
+      send(v);
     } else if (id === REQUEST_DATA_STREAM) {
       s.dataStreams.push({ boot: s.boot, stream: m.reqStreamId, rate: m.reqMessageRate, start: m.startStop });
       if (mute) return;
@@ -93,6 +108,9 @@ function scriptedVehicle(vehicle, sysid, script, { mute = false } = {}) {
         const [w, x, y, z] = o.q;
         const a = new common.Attitude();
         a.timeBootMs = bootMs();
+        // Its IMU's tilt is the body's true tilt: what mocap says, when the axes are right.
+        a.roll = Math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y));
+        a.pitch = Math.asin(Math.max(-1, Math.min(1, 2 * (w * y - z * x))));
         a.yaw = Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z)) + s.yawOffsetRad;
         send(a);
       } else if (messageId === ID.LOCAL_POSITION_NED) {
@@ -158,7 +176,12 @@ async function main() {
     }
     assert.equal(q.agreement.verdict, 'agree', JSON.stringify(q.agreement));
     assert.ok(Math.abs(q.agreement.yaw_offset_deg) < 10, JSON.stringify(q.agreement));
-    assert.equal(q.agreement.reason, null);
+    // Agreed on gravity; its yaw and position are mocap's own, and the reason says so (issue 48).
+    assert.ok(q.agreement.tilt_offset_deg < 15, JSON.stringify(q.agreement));
+    assert.equal(q.agreement.reason,
+      "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
+      + "checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)");
+    assert.equal(q.agreement.fix, null);
     assert.equal(q.streams.ATTITUDE, 'arriving');
     assert.equal(q.streams.LOCAL_POSITION_NED, 'arriving');
     // Then the estimator's health, lost twice and accepted like LOCAL_POSITION_NED, at 1 Hz.
@@ -234,7 +257,7 @@ async function main() {
     const alerts = (await api('GET', '/api/status')).json.alerts;
     assert.ok(alerts.some((a) => a.kind === 'agreement_failing' && a.subject === 'quad' && a.level === 'error'),
       JSON.stringify(alerts));
-    await h.waitForLog(run, /agreement quad: estimate disagrees, yaw offset/, 5000);
+    await h.waitForLog(run, /agreement quad: estimate disagrees, tilt offset [0-9.]+ deg, yaw offset/, 5000);
     console.log(`ok: ${quad.commands.length} SET_MESSAGE_INTERVAL, ${quad.dataStreams.length} ` +
       `REQUEST_DATA_STREAM to quad; verdicts agree then disagree (${q.agreement.yaw_offset_deg.toFixed(1)}°)`);
   } finally {

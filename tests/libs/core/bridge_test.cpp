@@ -3,6 +3,7 @@
 // heartbeats), capture-time mapping, runtime control, vehicles added and removed at run time and
 // the snapshot.
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/quaternion.hpp"
 
 #include "mocaplink/mavlink/frame.hpp"
 
@@ -469,6 +470,95 @@ TEST(BridgeVehicles, HeartbeatStateAndAgreementEvents) {
   out = bridge.on_tick(received_at(20) + seconds(4));
   ASSERT_FALSE(out.events.empty());
   EXPECT_EQ(out.events[0].text, "link silent");
+}
+
+/// Issue 48: a Z-up Vicon (the Quad level, nose on mocap +x: identity quaternions) configured with
+/// `up` as given, bridged to an ArduCopter whose EKF3 takes yaw and position from ExternalNav
+/// (EK3_SRC1_YAW = 6, EK3_SRC1_POSXY = 6, every other parameter 0) and that reports, level on
+/// its IMU, the yaw and position mocaplink sends it. Returns the agreement after 12 s and the
+/// agreement events' texts.
+std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_view up) {
+  BridgeConfig c = two_vehicles();
+  c.world = *WorldAxisMapping::parse(up, "+x");
+  c.source_up = axis::pos_z;
+  c.vehicles = {vehicle("quad", "Quad", Profile::ardupilot, 1)};
+  Bridge bridge = make_bridge(c);
+  mavlink::Heartbeat hb;
+  hb.type = 2;
+  hb.autopilot = kMavAutopilotArdupilot;
+  std::vector<std::string> events;
+  const auto keep = [&](const BridgeOutput& out) {
+    for (const BridgeEvent& e : out.events) {
+      if (e.kind == BridgeEventKind::agreement) events.push_back(e.text);
+    }
+  };
+  for (std::uint64_t n = 1; n <= 1200; ++n) {  // 12 s of 100 Hz frames
+    const HostTime now = received_at(n);
+    bridge.on_frame(frame_at(n, true, false), now);
+    if (n % 10 != 0) continue;
+    if (n % 50 == 0) keep(bridge.on_vehicle_message(0, {1, 1, hb}, now));
+    const BridgeOutput ticked = bridge.on_tick(now);
+    keep(ticked);
+    for (const auto& m : ticked.messages) {
+      if (const auto* r = std::get_if<mavlink::ParamRequestRead>(&m.message)) {
+        const std::string name(r->param_id.begin(),
+                               std::find(r->param_id.begin(), r->param_id.end(), '\0'));
+        mavlink::ParamValue v;
+        v.param_id = r->param_id;
+        v.param_type = 2;  // INT8, the value cast to float (ArduPilot)
+        v.param_value = name == "EK3_SRC1_YAW" || name == "EK3_SRC1_POSXY" ? 6.0F : 0.0F;
+        keep(bridge.on_vehicle_message(0, {1, 1, v}, now));
+      }
+    }
+    if (n % 20 != 0) continue;  // its estimate at 5 Hz: mocaplink's own pose, fed back
+    const BodyEstimate& sent = bridge.snapshot(now).bodies[0].estimate;
+    const auto boot = static_cast<std::uint32_t>(60'000 + 10 * n);
+    mavlink::Attitude att;
+    att.time_boot_ms = boot;
+    att.yaw = static_cast<float>(euler_321_from_quaternion(sent.q_ned_frd).yaw_rad);
+    mavlink::LocalPositionNed pos;
+    pos.time_boot_ms = boot;
+    pos.x = static_cast<float>(sent.p_ned_m.x());
+    pos.y = static_cast<float>(sent.p_ned_m.y());
+    pos.z = static_cast<float>(sent.p_ned_m.z());
+    keep(bridge.on_vehicle_message(0, {1, 1, att}, now));
+    keep(bridge.on_vehicle_message(0, {1, 1, pos}, now));
+  }
+  return {bridge.snapshot(received_at(1200)).vehicles[0].vehicle.agreement, events};
+}
+
+TEST(BridgeVehicles, AnUpAxisMistakeWithExternalNavYawDisagreesAndNamesTheFix) {
+  const auto [agreement, events] = external_nav_quad("+y");
+  EXPECT_EQ(agreement.verdict, AgreementVerdict::disagree);
+  EXPECT_NEAR(*agreement.tilt_offset_deg, 90.0, 0.1);
+  EXPECT_NEAR(*agreement.yaw_offset_deg, 0.0, 0.1);  // mocap's own yaw: no sign of the mistake
+  ASSERT_TRUE(agreement.fix);
+  EXPECT_EQ(agreement.fix->lines, (std::vector<std::string>{"[mocap] up = \"+z\""}));
+  ASSERT_FALSE(events.empty());
+  const std::string& last = events.back();
+  EXPECT_EQ(last.rfind("estimate disagrees, tilt offset 90.", 0), 0U) << last;
+  const std::string tail =
+      "; fix: [mocap] up = \"+z\" (then tilt 0.0°, nose unchecked: the vehicle has no heading of "
+      "its own); or, as well at this pose: [[vehicle]] body_up = \"+y\"; yaw not checkable: the "
+      "vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not checkable: the vehicle's "
+      "position comes from mocap (EK3_SRC1_POSXY = 6)";
+  ASSERT_GE(last.size(), tail.size());
+  EXPECT_EQ(last.substr(last.size() - tail.size()), tail) << last;
+}
+
+TEST(BridgeVehicles, TheRightAxesWithExternalNavAgreeOnGravityAlone) {
+  const auto [agreement, events] = external_nav_quad("+z");
+  EXPECT_EQ(agreement.verdict, AgreementVerdict::agree);
+  EXPECT_NEAR(*agreement.tilt_offset_deg, 0.0, 0.1);
+  EXPECT_FALSE(agreement.fix);
+  ASSERT_FALSE(events.empty());
+  const std::string tail =
+      "; yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
+      "checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
+  const std::string& last = events.back();
+  EXPECT_EQ(last.rfind("estimate agrees, tilt offset 0.", 0), 0U) << last;
+  ASSERT_GE(last.size(), tail.size());
+  EXPECT_EQ(last.substr(last.size() - tail.size()), tail) << last;
 }
 
 TEST(BridgeVehicles, ReadsTheSetUpAsTheVehicleAndAppliesOnlyOnRequest) {

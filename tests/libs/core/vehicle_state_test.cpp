@@ -312,8 +312,21 @@ std::int64_t stream(VehicleState& v, const BodyEstimate& mocap, double yaw_rad, 
   return first;
 }
 
-TEST(VehicleAgreement, AgreesWithinThresholdsAtOnce) {
+/// A vehicle whose yaw and position are its own (compass yaw, its own GPS): what the check
+/// compares is independent of mocap, so it may agree (estimate_sources.hpp).
+EstimateSources own_sensors() {
+  return {{EstimateSource::independent, "EK3_SRC1_YAW = 1"},
+          {EstimateSource::independent, "EK3_SRC1_POSXY = 3"}};
+}
+
+VehicleState checkable_vehicle() {
   VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(own_sensors(), HostTime{});
+  return v;
+}
+
+TEST(VehicleAgreement, AgreesWithinThresholdsAtOnce) {
+  VehicleState v = checkable_vehicle();
   const auto mocap = mocap_at({1.0, 2.0, -0.5}, 10.0 * kPi / 180.0);
   v.on_message(from(1, 1, attitude(15.0 * kPi / 180.0)), HostTime{}, &mocap);
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);  // position not known yet
@@ -327,7 +340,7 @@ TEST(VehicleAgreement, AgreesWithinThresholdsAtOnce) {
 }
 
 TEST(VehicleAgreement, DeliberateNinetyDegreeYawErrorIsFlaggedAfterTheHold) {
-  VehicleState v(VehicleStateConfig{});
+  VehicleState v = checkable_vehicle();
   // The rigid body was created nose-left: mocap says north (0°), the vehicle says east (90°).
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
   v.on_message(from(1, 1, local(0.0F, 0.05F, -1.0F)), at_ms(0), &mocap);
@@ -344,13 +357,13 @@ TEST(VehicleAgreement, DeliberateNinetyDegreeYawErrorIsFlaggedAfterTheHold) {
   EXPECT_TRUE(r.agreement_changed);
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::disagree);
   // A sustained one in a 5 Hz stream: flagged exactly kAgreementHold after it began.
-  VehicleState w(VehicleStateConfig{});
+  VehicleState w = checkable_vehicle();
   EXPECT_EQ(stream(w, mocap, kPi / 2, 0.0F, 10'000, 20'000, -60'000, AgreementVerdict::disagree),
             10'000 + std::chrono::duration_cast<milliseconds>(kAgreementHold).count());
 }
 
 TEST(VehicleAgreement, ADisagreementShorterThanTheHoldNeverDisagrees) {
-  VehicleState v(VehicleStateConfig{});
+  VehicleState v = checkable_vehicle();
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
   // Agreeing, then 2.8 s of a 40° yaw jump (an EKF yaw reset), then agreeing again, twice.
   for (int round = 0; round < 2; ++round) {
@@ -373,7 +386,7 @@ TEST(VehicleAgreement, ADisagreementShorterThanTheHoldNeverDisagrees) {
 TEST(VehicleAgreement, AfterBootTheEstimateSettlesBeforeItIsCompared) {
   // Issue 31: mocaplink on while the vehicle boots; its estimate is 90° and 1 m off for its first
   // 10 s of uptime (not converged), then right. No disagree, no alert, at any moment.
-  VehicleState v(VehicleStateConfig{});
+  VehicleState v = checkable_vehicle();
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
   const std::int64_t boot = 5'000;  // host time of the vehicle's boot
   EXPECT_EQ(stream(v, mocap, kPi / 2, 1.0F, boot + 1'000, boot + 10'000, boot,
@@ -396,7 +409,7 @@ TEST(VehicleAgreement, AfterBootTheEstimateSettlesBeforeItIsCompared) {
 }
 
 TEST(VehicleAgreement, ARealMistakeRightAfterBootIsFlaggedOnceSettledAndHeld) {
-  VehicleState v(VehicleStateConfig{});
+  VehicleState v = checkable_vehicle();
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
   // The body is defined 90° off: the vehicle boots at host time 0 and stays 90° off.
   EXPECT_EQ(stream(v, mocap, kPi / 2, 0.0F, 1'000, 30'000, 0, AgreementVerdict::disagree),
@@ -404,7 +417,7 @@ TEST(VehicleAgreement, ARealMistakeRightAfterBootIsFlaggedOnceSettledAndHeld) {
 }
 
 TEST(VehicleAgreement, ARebootRestartsTheCheck) {
-  VehicleState v(VehicleStateConfig{});
+  VehicleState v = checkable_vehicle();
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
   EXPECT_GE(stream(v, mocap, kPi / 2, 0.0F, 0, 5'000, -60'000, AgreementVerdict::disagree), 0);
   // The vehicle reboots at 10 s (its boot clock starts again): unknown at once, not disagree.
@@ -416,7 +429,7 @@ TEST(VehicleAgreement, ARebootRestartsTheCheck) {
 }
 
 TEST(VehicleAgreement, YawWrapsAcross180) {
-  VehicleState v(VehicleStateConfig{});
+  VehicleState v = checkable_vehicle();
   const auto mocap = mocap_at({0.0, 0.0, 0.0}, 179.0 * kPi / 180.0);
   v.on_message(from(1, 1, attitude(-179.0 * kPi / 180.0)), HostTime{}, &mocap);
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 2.0, 1e-4);  // not −358
@@ -425,6 +438,71 @@ TEST(VehicleAgreement, YawWrapsAcross180) {
   EXPECT_DOUBLE_EQ(wrap_deg_180(540.0), 180.0);
   EXPECT_DOUBLE_EQ(wrap_deg_180(-190.0), 170.0);
   EXPECT_DOUBLE_EQ(wrap_deg_180(-0.0), 0.0);
+}
+
+TEST(VehicleAgreement, MocapComparedWithItselfNeverAgrees) {
+  // Issue 48: ArduCopter with EKF3 yaw and position from ExternalNav reports mocaplink's own yaw
+  // and position back; they match whatever the axes. Unknown while its parameters are unread,
+  // and never agree on them alone.
+  VehicleState v(VehicleStateConfig{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 0, 2'000, -60'000, AgreementVerdict::agree), -1);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);  // the sources are not known
+  EXPECT_NEAR(*v.agreement().yaw_offset_deg, 0.0, 1e-4);
+  const EstimateSources external_nav{{EstimateSource::mocap, "EK3_SRC1_YAW = 6"},
+                                     {EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}};
+  (void)v.set_estimate_sources(external_nav, at_ms(2'100));
+  EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 2'200, 6'000, -60'000, AgreementVerdict::agree), -1);
+  EXPECT_EQ(v.agreement().sources, external_nav);
+  // A mocap-fed yaw that does not follow mocap is still a real disagreement.
+  EXPECT_EQ(stream(v, mocap, kPi / 2, 0.0F, 6'200, 10'000, -60'000, AgreementVerdict::disagree),
+            9'200);
+}
+
+TEST(VehicleAgreement, SourcesLearntLaterJudgeTheVerdictAgain) {
+  VehicleState v(VehicleStateConfig{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  (void)stream(v, mocap, 0.0, 0.0F, 0, 1'000, -60'000, AgreementVerdict::agree);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::unknown);
+  const auto r = v.set_estimate_sources(own_sensors(), at_ms(1'100));
+  EXPECT_TRUE(r.agreement_changed);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
+  EXPECT_FALSE(v.set_estimate_sources(own_sensors(), at_ms(1'200)).agreement_changed);
+}
+
+TEST(VehicleAgreement, TiltIsTheGravityDirectionWithoutYaw) {
+  // Mocap level with its nose east; the vehicle pitched 3° nose up (a sloped floor) and rolled
+  // 2°: the gravity directions differ by acos(cos 3° cos 2°) = 3.6046°, whatever the yaw.
+  VehicleState v = checkable_vehicle();
+  const auto mocap = mocap_at({0.0, 0.0, 0.0}, kPi / 2);
+  mavlink::Attitude a = attitude(kPi / 2);
+  a.roll = static_cast<float>(2.0 * kPi / 180.0);
+  a.pitch = static_cast<float>(3.0 * kPi / 180.0);
+  v.on_message(from(1, 1, a), at_ms(0), &mocap);
+  v.on_message(from(1, 1, local(0.0F, 0.0F, 0.0F)), at_ms(0), &mocap);
+  const double want = std::acos(std::cos(3.0 * kPi / 180.0) * std::cos(2.0 * kPi / 180.0));
+  EXPECT_NEAR(*v.agreement().tilt_offset_deg, want * 180.0 / kPi, 1e-4);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
+}
+
+TEST(VehicleAgreement, UpAxisMistakeWithExternalNavYawDisagreesOnGravity) {
+  // Issue 48 as reported: a Z-up Vicon configured up = "+y", the vehicle level with its nose on
+  // mocap +x, EKF3 yaw and position from ExternalNav (so both match mocap). By hand: the world
+  // mapping's rows are N = +x, E = D x N = -y x +x = +z, D = -y; the body mapping FLU -> FRD is
+  // diag(1, -1, -1); R_ned_frd = W * I * B = [[1,0,0],[0,0,-1],[0,1,0]]: mocap's body down is
+  // its right (+y row 2): 90° of roll, where the vehicle's IMU says level.
+  VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(
+      {{EstimateSource::mocap, "EK3_SRC1_YAW = 6"}, {EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}},
+      HostTime{});
+  Eigen::Matrix3d r;
+  r << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  auto mocap = mocap_at({0.0, 0.0, 0.0}, 0.0);
+  mocap.q_ned_frd = Eigen::Quaterniond(r);
+  // The vehicle reports mocap's yaw (0: the nose's heading is unchanged by this mistake).
+  EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 0, 5'000, -60'000, AgreementVerdict::disagree), 3'000);
+  EXPECT_NEAR(*v.agreement().tilt_offset_deg, 90.0, 1e-4);
+  EXPECT_NEAR(*v.agreement().yaw_offset_deg, 0.0, 1e-4);
 }
 
 TEST(VehicleAgreement, PositionOffsetDisagreesAndLostMocapIsIgnored) {

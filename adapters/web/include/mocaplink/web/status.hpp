@@ -131,6 +131,16 @@ struct ClockView {
   std::string text;                 ///< core::vehicle_clock_text
 };
 
+/// The axis settings that make mocap agree with a disagreeing vehicle at rest (core::AxisFix).
+struct AxisFixView {
+  std::string kind;                            ///< "agrees", "fix", "mirror", "no_fit"
+  std::vector<std::string> lines;              ///< `[mocap] up = "+z"`, ...
+  std::vector<std::string> alternative_lines;  ///< an equally small other choice, if any
+  double tilt_residual_deg = 0.0;
+  std::optional<double> heading_residual_deg{};
+  std::string text;
+};
+
 struct AgreementView {
   AgreementVerdict verdict = AgreementVerdict::unknown;
   std::optional<double> yaw_offset_deg{};  ///< vehicle yaw − mocap yaw, wrapped to (−180, 180]
@@ -138,6 +148,10 @@ struct AgreementView {
   /// While the verdict is unknown: why, one sentence ("no ATTITUDE from the vehicle after
   /// asking: is this port's MAVLink enabled?"); null once there is a verdict.
   std::optional<std::string> reason{};
+  /// Angle between the vehicle's gravity direction (its IMU's roll and pitch) and mocap's, deg.
+  std::optional<double> tilt_offset_deg{};
+  /// While the verdict is disagree: the fix (docs/api.md `agreement.fix`); null otherwise.
+  std::optional<AxisFixView> fix{};
 };
 
 /// The vehicle's autopilot (core::VehicleSetup): "px4", "ardupilot", "other" or "unknown", and

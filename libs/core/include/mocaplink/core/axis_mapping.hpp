@@ -114,13 +114,20 @@ class WorldAxisMapping {
   /// The same rotation as a unit quaternion (w >= 0).
   [[nodiscard]] const Eigen::Quaterniond& q_ned_world() const { return q_ned_world_; }
 
+  /// The settings that made this mapping (identity: "-z" and "+x"), so that it can be written
+  /// back as its config keys (the agreement's fix, axis_fix.hpp).
+  [[nodiscard]] SignedAxis up() const { return up_; }
+  [[nodiscard]] const North& north() const { return north_; }
+
   /// Any world vector (position m, velocity m/s) in NED coordinates.
   [[nodiscard]] Eigen::Vector3d to_ned(const Eigen::Vector3d& v_world) const {
     return r_ned_world_ * v_world;
   }
 
  private:
-  explicit WorldAxisMapping(const Eigen::Matrix3d& r_ned_world);
+  WorldAxisMapping(SignedAxis up, North north, const Eigen::Matrix3d& r_ned_world);
+  SignedAxis up_ = axis::neg_z;
+  North north_ = axis::pos_x;
   Eigen::Matrix3d r_ned_world_ = Eigen::Matrix3d::Identity();
   Eigen::Quaterniond q_ned_world_ = Eigen::Quaterniond::Identity();
 };

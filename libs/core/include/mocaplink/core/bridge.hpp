@@ -114,6 +114,9 @@ struct PublishedBody {
 
 struct BridgeConfig {
   WorldAxisMapping world = default_world_axes();  ///< mocap world → NED
+  /// The source's customary up axis (Vicon, QTM, Tracker UDP +z; Motive +y; nullopt when it has
+  /// none, VRPN, sim, replay): breaks ties when the agreement names an axis fix (axis_fix.hpp).
+  std::optional<SignedAxis> source_up;
   /// Geodetic origin of the mocap frame (altitude AMSL, used as is: docs/messages.md "Altitude").
   /// Required when a vehicle's messages need it (HIL_GPS, GPS_INPUT).
   std::optional<GeodeticPosition> origin;

@@ -196,6 +196,11 @@ class VehicleSetup {
   [[nodiscard]] const std::optional<FirmwareVersion>& version() const { return version_; }
   [[nodiscard]] bool identified() const { return version_done_; }
   [[nodiscard]] SetupState state() const { return state_; }
+  /// What the vehicle is fed (setup_input), which decides the rules.
+  [[nodiscard]] SetupInput input() const;
+  /// A parameter of the list as the vehicle reported it (nullopt: not in the list, not read yet,
+  /// or never answered this boot). Used by the agreement check (estimate_sources.hpp).
+  [[nodiscard]] std::optional<double> parameter(std::string_view name) const;
 
  private:
   struct Param {

@@ -33,9 +33,22 @@
 //               of its body at the message's arrival: yaw offset (deg, vehicle − mocap, wrapped to
 //               (−180, 180]) and position offset (m, 3-D distance). Catches a wrong axis mapping,
 //               a body not created nose-forward, or another vehicle's poses, before take-off.
+//               Gravity is always independent (issue 48): both autopilots compute roll and
+//               pitch from their IMU whatever they fuse, so each ATTITUDE's tilt is compared
+//               with mocap's tilt of the body (axis_fix.hpp: the angle between the two gravity
+//               directions in the body, yaw-free); beyond kMaxTiltOffsetDeg (15°) it disagrees,
+//               as the other two do (a wrong `up` or `body_up` is 90° or 180° at rest). An
+//               agreement needs the tilt.
+//               Never an agreement of mocap with itself (issue 48): where the vehicle's yaw or
+//               position comes from mocaplink (estimate_sources.hpp: EK3_SRC1_YAW = 6,
+//               EKF2_EV_CTRL bits; the Bridge passes them in from the set-up list), that
+//               comparison can still disagree (the vehicle does not follow our poses) but does
+//               not make an agreement, and while the deciding parameter is not known the verdict
+//               stays unknown rather than agree.
 //               The verdict (docs/messages.md "Agreement"):
-//                 agree     at once, when both offsets are known and within the thresholds
-//                           (default 10°, 0.3 m);
+//                 agree     at once, when the tilt, yaw and position offsets are known and
+//                           within the thresholds (default 15°, 10°, 0.3 m) and both sources are
+//                           known;
 //                 disagree  only once every comparison for kAgreementHold (3 s) was beyond a
 //                           threshold: a vehicle's estimate jumps while its EKF aligns or resets
 //                           (a false alarm makes pilots ignore the real one); until then unknown,
@@ -59,7 +72,9 @@
 #include <string>
 #include <string_view>
 
+#include "mocaplink/core/axis_fix.hpp"
 #include "mocaplink/core/body_estimate.hpp"
+#include "mocaplink/core/estimate_sources.hpp"
 #include "mocaplink/core/geodesy.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/core/vehicle_clock.hpp"
@@ -133,6 +148,7 @@ inline constexpr Duration kAgreementHold = std::chrono::seconds(3);
 /// Thresholds of the agreement check (documented defaults; docs/messages.md "Agreement").
 struct AgreementThresholds {
   double max_yaw_offset_deg = 10.0;  ///< ArduPilot's own VisOdom pre-arm yaw check uses 10° (§7)
+  double max_tilt_offset_deg = kMaxTiltOffsetDeg;  ///< axis_fix.hpp: why 15°
   double max_position_offset_m = 0.3;
 };
 
@@ -165,6 +181,8 @@ struct Agreement {
   AgreementVerdict verdict = AgreementVerdict::unknown;
   std::optional<double> yaw_offset_deg;     ///< vehicle yaw − mocap yaw, (−180, 180]
   std::optional<double> position_offset_m;  ///< |p_vehicle − p_mocap|, m
+  /// Angle between the vehicle's gravity direction (ATTITUDE roll, pitch) and mocap's, deg 0–180.
+  std::optional<double> tilt_offset_deg;
   std::optional<HostTime> updated;
   /// The first comparison of the current run beyond a threshold (disagree once it has lasted
   /// kAgreementHold); nullopt when the latest comparison was within both.
@@ -172,6 +190,15 @@ struct Agreement {
   /// The vehicle's latest ATTITUDE / LOCAL_POSITION_NED came in its first kAgreementSettle of
   /// uptime: not compared (verdict unknown, offsets cleared).
   bool settling = false;
+  /// Where the vehicle's yaw and position come from (the Bridge's set_estimate_sources).
+  EstimateSources sources;
+  /// The vehicle's latest ATTITUDE roll and pitch (rad) that was compared: its gravity.
+  std::optional<double> roll_rad;
+  std::optional<double> pitch_rad;
+  std::optional<double> yaw_rad;  ///< its yaw: a heading of its own when sources.yaw is independent
+  /// While the verdict is disagree: the axis settings that make mocap agree with the vehicle at
+  /// rest (the Bridge's set_axis_fix, axis_fix.hpp); cleared with the verdict.
+  std::optional<AxisFix> fix;
 };
 
 struct VehicleCounters {
@@ -236,6 +263,13 @@ class VehicleState {
   /// origin becomes `withheld` (origin_changed); a report of another origin leaves it so.
   VehicleReaction withhold_origin();
 
+  /// Where the vehicle's yaw and position come from, from its set-up list's parameters (the
+  /// Bridge, on every message and tick). A change re-judges the verdict (agreement_changed).
+  VehicleReaction set_estimate_sources(const EstimateSources& sources, HostTime now);
+
+  /// The Bridge's axis fix for the current disagreement (ignored unless the verdict is disagree).
+  void set_axis_fix(AxisFix fix);
+
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
   void on_timesync_request_sent(std::int64_t ts1_ns);
 
@@ -286,6 +320,7 @@ class VehicleState {
   // Agreement inputs: latest vehicle yaw / position with the mocap estimate seen with each.
   std::optional<double> vehicle_yaw_offset_deg_;
   std::optional<double> vehicle_position_offset_m_;
+  std::optional<double> vehicle_tilt_offset_deg_;
   Agreement agreement_;
   VehicleCounters counters_;
 };

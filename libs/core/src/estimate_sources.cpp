@@ -1,0 +1,126 @@
+// Estimate sources (estimate_sources.hpp): is the vehicle's yaw / position mocaplink's own?
+#include "mocaplink/core/estimate_sources.hpp"
+
+#include <cmath>
+
+namespace mocaplink::core {
+namespace {
+
+constexpr double kExternalNav = 6;  // EK3_SRCn_*: 6 ExternalNav
+constexpr double kGps = 3;          // EK3_SRCn_POSXY: 3 GPS
+constexpr double kGpsYaw = 2;       // EK3_SRCn_YAW: 2 GPS, 3 GPS with compass fallback
+constexpr double kGpsYawFallback = 3;
+
+QuantitySource from_mocap(std::string_view parameter, double value) {
+  return {EstimateSource::mocap, std::string(parameter) + " = " + format_value(value)};
+}
+
+QuantitySource independent(std::string_view parameter, double value) {
+  return {EstimateSource::independent, std::string(parameter) + " = " + format_value(value)};
+}
+
+QuantitySource unknown(std::string_view parameter) {
+  return {EstimateSource::unknown, std::string(parameter)};
+}
+
+bool has_bit(double value, unsigned bit) {
+  return (static_cast<unsigned long long>(std::llround(value)) & bit) != 0;
+}
+
+EstimateSources ardupilot(SetupInput input, const ParameterLookup& parameter) {
+  const bool fake_gps = input == SetupInput::fake_gps;
+  EstimateSources s;
+  if (const auto yaw = parameter("EK3_SRC1_YAW")) {
+    const bool ours =
+        *yaw == kExternalNav || (fake_gps && (*yaw == kGpsYaw || *yaw == kGpsYawFallback));
+    s.yaw = ours ? from_mocap("EK3_SRC1_YAW", *yaw) : independent("EK3_SRC1_YAW", *yaw);
+  } else {
+    s.yaw = unknown("EK3_SRC1_YAW");
+  }
+  if (const auto pos = parameter("EK3_SRC1_POSXY")) {
+    const bool ours = *pos == kExternalNav || (fake_gps && *pos == kGps);
+    s.position = ours ? from_mocap("EK3_SRC1_POSXY", *pos) : independent("EK3_SRC1_POSXY", *pos);
+  } else {
+    s.position = unknown("EK3_SRC1_POSXY");
+  }
+  return s;
+}
+
+EstimateSources px4(const std::optional<FirmwareVersion>& version, SetupInput input,
+                    const ParameterLookup& parameter) {
+  EstimateSources s;
+  // EKF2_EV_CTRL from 1.14 (bits 1 horizontal position, 8 yaw); EKF2_AID_MASK before (8 vision
+  // position, 16 vision yaw): setup_rules.cpp reads the one of the version.
+  const bool old = version && !version->at_least(1, 14);
+  const std::string_view name = old ? "EKF2_AID_MASK" : "EKF2_EV_CTRL";
+  const unsigned yaw_bit = old ? 16 : 8;
+  const unsigned pos_bit = old ? 8 : 1;
+  const std::optional<double> value = parameter(name);
+  if (input == SetupInput::fake_gps) {
+    // HIL_GPS is mocaplink's position; it has no yaw, so the heading is the magnetometer's.
+    s.position = {EstimateSource::mocap, "profile px4-gps (HIL_GPS)"};
+    s.yaw = {EstimateSource::independent, "HIL_GPS carries no yaw"};
+    return s;
+  }
+  if (!value) return {unknown(name), unknown(name)};
+  s.yaw = has_bit(*value, yaw_bit) ? from_mocap(name, *value) : independent(name, *value);
+  s.position = has_bit(*value, pos_bit) ? from_mocap(name, *value) : independent(name, *value);
+  return s;
+}
+
+}  // namespace
+
+std::string_view to_string(EstimateSource source) {
+  switch (source) {
+    case EstimateSource::unknown:
+      return "unknown";
+    case EstimateSource::independent:
+      return "independent";
+    case EstimateSource::mocap:
+      return "mocap";
+  }
+  return "unknown";
+}
+
+EstimateSources estimate_sources(AutopilotFamily autopilot,
+                                 const std::optional<FirmwareVersion>& version, SetupInput input,
+                                 const ParameterLookup& parameter) {
+  switch (autopilot) {
+    case AutopilotFamily::ardupilot:
+      return ardupilot(input, parameter);
+    case AutopilotFamily::px4:
+      return px4(version, input, parameter);
+    case AutopilotFamily::unknown:
+    case AutopilotFamily::other:
+      break;
+  }
+  return {};
+}
+
+std::optional<std::string> describe_unchecked(std::string_view what, const QuantitySource& source) {
+  const std::string name(what);
+  switch (source.source) {
+    case EstimateSource::independent:
+      return std::nullopt;
+    case EstimateSource::mocap:
+      return name + " not checkable: the vehicle's " + name + " comes from mocap (" + source.basis +
+             ")";
+    case EstimateSource::unknown:
+      if (source.basis.empty()) {
+        return name + " not checkable: unknown whether the vehicle's " + name +
+               " comes from mocap (no set-up rules for its autopilot)";
+      }
+      return name + " not checkable yet: " + source.basis +
+             " not read from the vehicle (does its " + name + " come from mocap?)";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> describe_unchecked(const EstimateSources& sources) {
+  const auto yaw = describe_unchecked("yaw", sources.yaw);
+  const auto position = describe_unchecked("position", sources.position);
+  if (yaw && position) return *yaw + "; " + *position;
+  return yaw ? yaw : position;
+}
+
+}  // namespace mocaplink::core

@@ -1,0 +1,160 @@
+// The agreement check against gravity (issue 48), with the real daemon and a scripted ArduCopter
+// whose EKF3 takes yaw and position from ExternalNav (EK3_SRC1_YAW = 6, EK3_SRC1_POSXY = 6): it
+// reports back mocaplink's own yaw and position (from the ODOMETRY it is sent), so they always
+// match, and its IMU's roll and pitch from the body's true attitude. The truth is the sim's Z-up
+// world with FLU bodies: the raw quaternion /api/status shows (`station.bodies[].q_wxyz`, before
+// any mapping) turned into NED/FRD here by hand (R = Rx(180°) · R_raw · Rx(180°)), not by mocaplink.
+//   right   `up = "+z"`: `agree` on gravity, the reason naming yaw and position as not checkable.
+//   mistake `up = "+y"` (the OptiTrack habit): tilt offset near 90°, `disagree`, the
+//           agreement_failing alert, and the fix `[mocap] up = "+z"` in agreement.fix, the reason
+//           and the log line; poses keep flowing.
+'use strict';
+
+const path = require('node:path');
+const { MavLinkProtocolV2, common, minimal } = require('node-mavlink');
+const h = require('./harness');
+
+const { assert, ID } = h;
+const PARAM_REQUEST_READ = 20;
+const EXTERNAL_NAV = ['EK3_SRC1_YAW', 'EK3_SRC1_POSXY'];
+
+/// Roll and pitch (rad) of the NED/FRD attitude of a raw Z-up, FLU quaternion [w, x, y, z].
+function trueTilt([w, x, y, z]) {
+  // Rows of R_raw (body → world), then R = diag(1,−1,−1) · R_raw · diag(1,−1,−1).
+  const r = [
+    [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+  ];
+  const s = [1, -1, -1];
+  const m = r.map((row, i) => row.map((v, j) => s[i] * v * s[j]));
+  return { roll: Math.atan2(m[2][1], m[2][2]), pitch: -Math.asin(Math.max(-1, Math.min(1, m[2][0]))) };
+}
+
+/// The scripted ArduCopter: heartbeat 2 Hz, ATTITUDE and LOCAL_POSITION_NED at 5 Hz unasked,
+/// parameter reads answered (EXTERNAL_NAV 6, the rest 0). `truth()` gives the body's raw q.
+function externalNavVehicle(vehicle, sysid, truth) {
+  const s = { odometry: null };
+  let seq = 0;
+  const send = (m) => vehicle.send(new MavLinkProtocolV2(sysid, 1).serialize(m, seq++ & 255));
+  const bootStart = performance.now() - 60000;  // up for a minute: settled
+  vehicle.decoder.parser.on('data', (packet) => {
+    const m = h.decode(packet);
+    if (packet.header.msgid === ID.ODOMETRY) s.odometry = m;
+    if (packet.header.msgid === PARAM_REQUEST_READ && m.targetSystem === sysid) {
+      const v = new common.ParamValue();
+      v.paramId = m.paramId.replace(/\0+$/, '');
+      v.paramType = 2;  // INT8, the value cast to float as ArduPilot sends it
+      v.paramValue = EXTERNAL_NAV.includes(v.paramId) ? 6 : 0;
+      v.paramCount = 1;
+      v.paramIndex = 65535;
+      send(v);
+    }
+  });
+  const heartbeat = new minimal.Heartbeat();
+  heartbeat.type = 2;
+  heartbeat.autopilot = 3;
+  heartbeat.systemStatus = 3;
+  heartbeat.mavlinkVersion = 3;
+  let n = 0;
+  s.timer = setInterval(() => {
+    n += 1;
+    if (n % 2 === 0) send(heartbeat);
+    const o = s.odometry;
+    const q = truth();
+    if (!o || !q) return;
+    const bootMs = Math.round(performance.now() - bootStart);
+    const [w, x, y, z] = o.q;
+    const { roll, pitch } = trueTilt(q);
+    const a = new common.Attitude();
+    a.timeBootMs = bootMs;
+    a.roll = roll;
+    a.pitch = pitch;
+    a.yaw = Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));  // mocap's, fed back
+    send(a);
+    const p = new common.LocalPositionNed();
+    p.timeBootMs = bootMs;
+    p.x = o.x;
+    p.y = o.y;
+    p.z = o.z;
+    send(p);
+  }, 200);
+  return s;
+}
+
+async function session(dir, up) {
+  const link = await new h.UdpVehicle().bind();
+  const config = h.writeConfig(path.join(dir, `up${up === '+z' ? 'z' : 'y'}.toml`),
+    'sim://?bodies=1&rate_hz=100', [{ name: 'quad', body: 'Body1',
+      link: `udp://127.0.0.1:${link.port}`, system_id: 1, profile: 'ardupilot', rate_hz: 30 }],
+    `up = "${up}"`);
+  const run = h.mocaplink(['run', '--config', config]);
+  const [, port] = await h.waitForLog(run, /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//);
+  const api = h.dashboardApi(port);
+  let truth = null;
+  const poll = setInterval(async () => {
+    try {
+      const body = (await api('GET', '/api/status')).json.station.bodies.find((b) => b.name === 'Body1');
+      if (body && body.q_wxyz) truth = body.q_wxyz;
+    } catch { /* the daemon stopping */ }
+  }, 50);
+  await h.waitFor(() => link.peer !== undefined, 10000, 'first datagrams');
+  const quad = externalNavVehicle(link, 1, () => truth);
+  const done = async () => {
+    clearInterval(quad.timer);
+    clearInterval(poll);
+    await h.stop(run);
+    link.close();
+  };
+  const verdict = async (want, ms) => {
+    let q;
+    const deadline = Date.now() + ms;
+    while (Date.now() < deadline) {
+      q = (await api('GET', '/api/status')).json.vehicles[0];
+      if (q.agreement.verdict === want) return q;
+      await h.sleep(100);
+    }
+    assert.fail(`no ${want} in ${ms} ms: ${JSON.stringify(q.agreement)}\n${run.stderr}`);
+  };
+  return { run, api, verdict, done };
+}
+
+const NOT_CHECKABLE = "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); "
+  + "position not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
+
+async function main() {
+  const dir = h.tempDir('agreement-axes');
+  const right = await session(dir, '+z');
+  const mistake = await session(dir, '+y');
+  try {
+    const ok = await right.verdict('agree', 20000);
+    assert.ok(ok.agreement.tilt_offset_deg < 5, JSON.stringify(ok.agreement));
+    assert.equal(ok.agreement.reason, NOT_CHECKABLE);
+    assert.equal(ok.agreement.fix, null);
+
+    const bad = await mistake.verdict('disagree', 25000);
+    const a = bad.agreement;
+    assert.ok(Math.abs(a.tilt_offset_deg - 90) < 10, JSON.stringify(a));
+    assert.ok(Math.abs(a.yaw_offset_deg) < 5, JSON.stringify(a));  // mocap against itself
+    assert.equal(a.fix.kind, 'fix', JSON.stringify(a.fix));
+    assert.deepEqual(a.fix.lines, ['[mocap] up = "+z"'], JSON.stringify(a.fix));
+    assert.ok(a.fix.tilt_residual_deg < 5, JSON.stringify(a.fix));
+    assert.ok(a.reason.startsWith('fix: [mocap] up = "+z" (then tilt '), a.reason);
+    assert.ok(a.reason.endsWith(NOT_CHECKABLE), a.reason);
+    const alerts = (await mistake.api('GET', '/api/status')).json.alerts;
+    assert.ok(alerts.some((x) => x.kind === 'agreement_failing' && x.subject === 'quad'), JSON.stringify(alerts));
+    await h.waitForLog(mistake.run, /agreement quad: estimate disagrees, tilt offset [0-9.]+ deg.*; fix: \[mocap\] up = "\+z"/, 5000);
+    // It refuses nothing new: poses keep flowing.
+    const sent = bad.sent.ODOMETRY;
+    await h.sleep(500);
+    const later = (await mistake.api('GET', '/api/status')).json.vehicles[0].sent.ODOMETRY;
+    assert.ok(later > sent, `ODOMETRY ${sent} → ${later}`);
+    console.log(`ok: right axes agree (tilt ${ok.agreement.tilt_offset_deg.toFixed(1)}°); up = "+y" `
+      + `disagrees (tilt ${a.tilt_offset_deg.toFixed(1)}°) with ${a.fix.text}`);
+  } finally {
+    await right.done();
+    await mistake.done();
+  }
+}
+
+main().catch(h.fail);

@@ -1,0 +1,93 @@
+// Estimate sources (estimate_sources.hpp) against the parameter meanings of
+// protocols/autopilots.md §8 (EK3_SRCn_* 6 = ExternalNav; EKF2_EV_CTRL bits 1 and 8;
+// EKF2_AID_MASK bits 8 and 16 up to PX4 1.13).
+#include "mocaplink/core/estimate_sources.hpp"
+
+#include <map>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace mocaplink::core {
+namespace {
+
+ParameterLookup params(std::map<std::string, double> values) {
+  return [values = std::move(values)](std::string_view name) -> std::optional<double> {
+    const auto it = values.find(std::string(name));
+    if (it == values.end()) return std::nullopt;
+    return it->second;
+  };
+}
+
+TEST(EstimateSources, ArduPilotExternalNavYawAndPositionAreMocaps) {
+  const auto s = estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision,
+                                  params({{"EK3_SRC1_YAW", 6}, {"EK3_SRC1_POSXY", 6}}));
+  EXPECT_EQ(s.yaw, (QuantitySource{EstimateSource::mocap, "EK3_SRC1_YAW = 6"}));
+  EXPECT_EQ(s.position, (QuantitySource{EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}));
+  EXPECT_EQ(describe_unchecked("yaw", s.yaw),
+            "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6)");
+}
+
+TEST(EstimateSources, ArduPilotCompassYawIsIndependent) {
+  const auto s = estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision,
+                                  params({{"EK3_SRC1_YAW", 1}, {"EK3_SRC1_POSXY", 6}}));
+  EXPECT_EQ(s.yaw.source, EstimateSource::independent);
+  EXPECT_EQ(s.position.source, EstimateSource::mocap);
+  EXPECT_EQ(describe_unchecked("yaw", s.yaw), std::nullopt);
+}
+
+TEST(EstimateSources, ArduPilotGpsYawIsMocapsOnlyWhenTheGpsIsMocaplinks) {
+  const auto lookup = params({{"EK3_SRC1_YAW", 2}, {"EK3_SRC1_POSXY", 3}});
+  const auto fake =
+      estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::fake_gps, lookup);
+  EXPECT_EQ(fake.yaw.source, EstimateSource::mocap);  // GPS_INPUT carries our yaw
+  EXPECT_EQ(fake.position.source, EstimateSource::mocap);
+  const auto vision =
+      estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision, lookup);
+  EXPECT_EQ(vision.yaw.source, EstimateSource::independent);  // a real GPS of its own
+  EXPECT_EQ(vision.position.source, EstimateSource::independent);
+}
+
+TEST(EstimateSources, UnreadParametersAreUnknownAndSaySo) {
+  const auto s =
+      estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision, params({}));
+  EXPECT_EQ(s.yaw, (QuantitySource{EstimateSource::unknown, "EK3_SRC1_YAW"}));
+  EXPECT_EQ(describe_unchecked("yaw", s.yaw),
+            "yaw not checkable yet: EK3_SRC1_YAW not read from the vehicle (does its yaw come "
+            "from mocap?)");
+  const auto other = estimate_sources(AutopilotFamily::other, std::nullopt, SetupInput::vision,
+                                      params({{"EK3_SRC1_YAW", 1}}));
+  EXPECT_EQ(other.yaw.source, EstimateSource::unknown);
+  EXPECT_EQ(describe_unchecked("position", other.position),
+            "position not checkable: unknown whether the vehicle's position comes from mocap (no "
+            "set-up rules for its autopilot)");
+}
+
+TEST(EstimateSources, Px4EvCtrlBits) {
+  const FirmwareVersion v1_15{1, 15, 0, 0};
+  // 15 = horizontal position 1 + vertical 2 + velocity 4 + yaw 8.
+  auto s = estimate_sources(AutopilotFamily::px4, v1_15, SetupInput::vision,
+                            params({{"EKF2_EV_CTRL", 15}}));
+  EXPECT_EQ(s.yaw, (QuantitySource{EstimateSource::mocap, "EKF2_EV_CTRL = 15"}));
+  EXPECT_EQ(s.position.source, EstimateSource::mocap);
+  // 7: no EV yaw (the magnetometer's heading).
+  s = estimate_sources(AutopilotFamily::px4, v1_15, SetupInput::vision,
+                       params({{"EKF2_EV_CTRL", 7}}));
+  EXPECT_EQ(s.yaw.source, EstimateSource::independent);
+  EXPECT_EQ(s.position.source, EstimateSource::mocap);
+  // 1.13: EKF2_AID_MASK 24 = vision position 8 + vision yaw 16; EKF2_EV_CTRL is not its name.
+  s = estimate_sources(AutopilotFamily::px4, FirmwareVersion{1, 13, 3, 0}, SetupInput::vision,
+                       params({{"EKF2_AID_MASK", 8}, {"EKF2_EV_CTRL", 15}}));
+  EXPECT_EQ(s.yaw, (QuantitySource{EstimateSource::independent, "EKF2_AID_MASK = 8"}));
+  EXPECT_EQ(s.position.source, EstimateSource::mocap);
+}
+
+TEST(EstimateSources, Px4HilGpsPositionIsMocapsAndItsYawIsTheCompass) {
+  const auto s =
+      estimate_sources(AutopilotFamily::px4, std::nullopt, SetupInput::fake_gps, params({}));
+  EXPECT_EQ(s.position.source, EstimateSource::mocap);
+  EXPECT_EQ(s.yaw.source, EstimateSource::independent);
+}
+
+}  // namespace
+}  // namespace mocaplink::core
