@@ -380,11 +380,36 @@ function renderPlots() {
 
 // ---- Wiring ---------------------------------------------------------------------------------
 
+/// The [ros2] side: domain, topics, subscribers matched, samples written, problems.
+function renderRos2(ros2) {
+  $('#st-ros2-row').hidden = ros2 === null || ros2 === undefined;
+  if (!ros2) return;
+  const el = $('#st-ros2');
+  if (!ros2.running) {
+    el.textContent = `not running: ${ros2.error}`;
+    el.className = 'bad';
+    return;
+  }
+  const subscribers = ros2.topics.reduce((n, t) => n + t.subscribers, 0);
+  const problems = [];
+  if (ros2.error) problems.push(ros2.error);
+  if (ros2.frames_dropped > 0) problems.push(`${int(ros2.frames_dropped)} frames dropped`);
+  if (ros2.write_errors > 0) problems.push(`${int(ros2.write_errors)} write errors`);
+  if (ros2.unnamed.length > 0) problems.push(`no ROS name: ${ros2.unnamed.join(', ')}`);
+  if (ros2.clashes.length > 0) problems.push(`name taken: ${ros2.clashes.join(', ')}`);
+  el.textContent = `domain ${ros2.domain_id}, /${ros2.namespace}, ${ros2.topics.length} topics, ` +
+    `${subscribers} subscribers, ${int(ros2.frames_published)} frames` +
+    (problems.length ? ` — ${problems.join('; ')}` : '');
+  el.className = problems.length ? 'bad' : '';
+  el.title = ros2.topics.map((t) => `${t.name} (${t.type}): ${t.subscribers} subscribers, ${t.published} published`).join('\n');
+}
+
 function onStatus(status) {
   state.status = status;
   state.history.add(status);
   $('#uptime').textContent = `up ${duration(status.uptime_s)}`;
   renderStation(status.station);
+  renderRos2(status.ros2);
   renderVehicles(status.vehicles);
   renderAlerts(status.alerts);
   requestAnimationFrame(renderPlots);
