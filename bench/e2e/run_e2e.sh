@@ -23,6 +23,9 @@
 # CPUS=LIST runs the floor and mocaplink under `taskset -c LIST` (CPUS=1: one core, a stand-in for
 # sizing a smaller machine; the receivers are not pinned). RATE_HZ sets the mocap rate and every
 # vehicle's rate_hz (default 240; still one ODOMETRY per frame).
+# ROS2=DOMAIN adds [ros2] (interface loopback, that domain) to mocaplink's configuration, not the
+# floor's: every body on ROS 2 topics beside the vehicles (issue 46). A subscriber is the caller's
+# to start (tests/adapters/ros2/oracle), or the writers have no reader to send to.
 set -euo pipefail
 bin=$1
 receivers=$2
@@ -67,6 +70,9 @@ measure() {
     > "$work/recv.out" &
   local rpid=$!
   while ! grep -q ready "$work/recv.out" 2>/dev/null; do sleep 0.1; done
+  if [ -n "${ROS2:-}" ] && [ "$1" != "$floor" ]; then
+    printf '[ros2]\ninterface = "loopback"\ndomain_id = %s\n' "$ROS2" >> "$work/c.toml"
+  fi
   MOCAPLINK_STATE_DIR="$work/state" MOCAPLINK_SUMMARY_S=3600 /usr/bin/time -f '%U %S %e %M' \
     -o "$work/time.out" "${prio[@]}" "${pin[@]}" "$@" --config "$work/c.toml" 2> "$work/run.err" &
   local tpid=$!
