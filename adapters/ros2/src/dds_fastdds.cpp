@@ -2,6 +2,11 @@
 // why this library). Samples arrive encoded (libs/wire/ros2_messages.hpp), so one TopicDataType
 // carries opaque bytes under whatever ROS type name the topic has: no generated code, no
 // TypeObject or TypeInformation (neither ROS RMW sends them, so readers match on names and QoS).
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <netinet/in.h>
+
+#include <algorithm>
 #include <cstring>
 #include <mutex>
 
@@ -105,6 +110,21 @@ class FastDdsWriter final : public Writer {
   std::vector<std::uint8_t> sample_;
 };
 
+/// This machine's IPv4 addresses ("127.0.0.1, 192.168.1.10").
+std::vector<std::string> local_ipv4_addresses() {
+  std::vector<std::string> out;
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return out;
+  for (const ifaddrs* a = list; a != nullptr; a = a->ifa_next) {
+    if (a->ifa_addr == nullptr || a->ifa_addr->sa_family != AF_INET) continue;
+    char text[INET_ADDRSTRLEN] = {};
+    const auto* in = reinterpret_cast<const sockaddr_in*>(a->ifa_addr);
+    if (inet_ntop(AF_INET, &in->sin_addr, text, sizeof text) != nullptr) out.emplace_back(text);
+  }
+  freeifaddrs(list);
+  return out;
+}
+
 Locator_t udp_locator(const std::string& address) {
   Locator_t locator;
   IPLocator::setIPv4(locator, address);
@@ -134,6 +154,16 @@ class FastDdsParticipant final : public Participant {
       builtin.initialPeersList.push_back(udp_locator("127.0.0.1"));
       qos.wire_protocol().default_unicast_locator_list.push_back(udp_locator("127.0.0.1"));
     } else if (settings.interface != "all") {
+      // Fast DDS given an address no interface has says so and then uses every interface: the
+      // traffic the user did not ask for. Refuse it here instead.
+      const auto local = local_ipv4_addresses();
+      if (std::find(local.begin(), local.end(), settings.interface) == local.end()) {
+        std::string list;
+        for (const auto& a : local) list += (list.empty() ? "" : ", ") + a;
+        error = settings.interface + " is not an address of this machine (its addresses: " +
+                (list.empty() ? "none" : list) + "); set [ros2] interface to one of them";
+        return nullptr;
+      }
       udp->interfaceWhiteList.emplace_back(settings.interface);
     }
     qos.transport().user_transports.push_back(udp);
