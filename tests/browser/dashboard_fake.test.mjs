@@ -77,7 +77,7 @@ describe('dashboard against the fake backend', () => {
     assert.match(await quad.locator('.v-agreement-box').getAttribute('class'), /\bagree\b/);
     // The rover's estimate disagrees: warning colour (class) and text.
     assert.match(await rover.locator('.v-agreement-box').getAttribute('class'), /\bdisagree\b/);
-    assert.match(await rover.locator('.v-agreement').textContent(), /DISAGREES · yaw 89.7°/);
+    assert.match(await rover.locator('.v-agreement').textContent(), /DISAGREES · tilt – · yaw 89.7°/);
     const colour = await rover.locator('.v-agreement').evaluate((el) => getComputedStyle(el).color);
     assert.equal(colour, 'rgb(180, 35, 24)');
     assert.equal(await rover.locator('.v-origin').textContent(), 'not confirmed');
