@@ -130,17 +130,13 @@ int run_check(const std::string& path, const sources::SourceRegistry& sources) {
     std::fprintf(stderr, "%s: %zu error%s\n", path.c_str(), n, n == 1 ? "" : "s");
     return 1;
   }
-  if (result.config->ros2) {
-    const auto domain = resolve_ros2(*result.config, error);
-    if (!domain) {
-      std::fprintf(stderr, "%s: %s\n%s: 1 error\n", path.c_str(), error.c_str(), path.c_str());
-      return 1;
-    }
-    print_summary(*result.config);
-    print_ros2(*result.config->ros2, *domain);
-    return 0;
+  std::optional<Ros2Domain> domain;
+  if (result.config->ros2 && !(domain = resolve_ros2(*result.config, error))) {
+    std::fprintf(stderr, "%s: %s\n%s: 1 error\n", path.c_str(), error.c_str(), path.c_str());
+    return 1;
   }
   print_summary(*result.config);
+  if (domain) print_ros2(*result.config->ros2, *domain);
   return 0;
 }
 

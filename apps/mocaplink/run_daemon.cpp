@@ -670,16 +670,9 @@ void Daemon::stop(const std::string& reason) {
 
 void Daemon::start_ros2() {
   if (!config_.ros2) return;
-  const config::Ros2Settings& s = *config_.ros2;
   ros2::Ros2Options options;
+  options.settings = *config_.ros2;
   options.domain_id = settings_.ros2_domain_id;
-  options.ns = s.ns;
-  options.frame_id = s.frame_id;
-  options.pose = s.pose;
-  options.odom = s.odom;
-  options.tf = s.tf;
-  options.axes = s.axes;
-  options.interface = s.interface;
   options.world = bridge_.config().world;
   ros2_ = ros2::start_publisher(options);  // a participant that fails is an error in its status
 }

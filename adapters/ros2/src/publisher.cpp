@@ -47,13 +47,14 @@ struct Body {
 
 class DdsPublisher final : public Publisher {
  public:
-  explicit DdsPublisher(const Ros2Options& options) : options_(options) {
+  explicit DdsPublisher(const Ros2Options& options)
+      : options_(options), settings_(options_.settings) {
     status_.domain_id = options.domain_id;
-    status_.interface = options.interface;
+    status_.interface = settings_.interface;
     status_.implementation = detail::dds_implementation();
     std::string error;
     participant_ = detail::make_participant(
-        detail::ParticipantSettings{options.domain_id, options.interface, "mocaplink"}, error);
+        detail::ParticipantSettings{options.domain_id, settings_.interface, "mocaplink"}, error);
     if (!participant_) {
       status_.error = error;
       spdlog::error("ros2: no DDS participant, nothing is published: {}", error);
@@ -61,8 +62,8 @@ class DdsPublisher final : public Publisher {
     }
     status_.running = true;
     spdlog::info("ros2: DDS participant up ({}), domain {}, interface {}", status_.implementation,
-                 options.domain_id, options.interface);
-    if (options_.tf) tf_ = make_topic("/tf", "tf2_msgs", "TFMessage", kTfDepth, kTfSampleBytes);
+                 options.domain_id, settings_.interface);
+    if (settings_.tf) tf_ = make_topic("/tf", "tf2_msgs", "TFMessage", kTfDepth, kTfSampleBytes);
     thread_ = std::thread([this] { run(); });
   }
 
@@ -157,12 +158,12 @@ class DdsPublisher final : public Publisher {
     }
     tokens_.emplace(token, name);
     b.token = token;
-    if (options_.pose) {
-      b.pose = make_topic(core::ros_body_topic(options_.ns, token, "pose"), "geometry_msgs",
+    if (settings_.pose) {
+      b.pose = make_topic(core::ros_body_topic(settings_.ns, token, "pose"), "geometry_msgs",
                           "PoseStamped", kBodyDepth, kBodySampleBytes);
     }
-    if (options_.odom) {
-      b.odom = make_topic(core::ros_body_topic(options_.ns, token, "odom"), "nav_msgs", "Odometry",
+    if (settings_.odom) {
+      b.odom = make_topic(core::ros_body_topic(settings_.ns, token, "odom"), "nav_msgs", "Odometry",
                           kBodyDepth, kBodySampleBytes);
     }
     if (token != name) {
@@ -198,18 +199,18 @@ class DdsPublisher final : public Publisher {
       Body& b = body(update.name);
       if (b.token.empty()) continue;
       const core::RosBodyState state =
-          core::ros_body_state(update.estimate, options_.axes, options_.world, update.axes);
+          core::ros_body_state(update.estimate, settings_.axes, options_.world, update.axes);
       if (b.pose != nullptr) {
-        wire::encode_pose_stamped(stamp, options_.frame_id, state, buffer_);
+        wire::encode_pose_stamped(stamp, settings_.frame_id, state, buffer_);
         write(b.pose, errors);
       }
       if (b.odom != nullptr) {
-        wire::encode_odometry(stamp, options_.frame_id, b.token, state, buffer_);
+        wire::encode_odometry(stamp, settings_.frame_id, b.token, state, buffer_);
         write(b.odom, errors);
       }
       if (tf_ != nullptr) {
         transforms_.push_back(
-            {stamp, options_.frame_id, b.token, state.position_m, state.orientation});
+            {stamp, settings_.frame_id, b.token, state.position_m, state.orientation});
       }
     }
     if (tf_ != nullptr && !transforms_.empty()) {
@@ -237,6 +238,7 @@ class DdsPublisher final : public Publisher {
   }
 
   const Ros2Options options_;
+  const config::Ros2Settings& settings_;  // options_.settings
   std::unique_ptr<detail::Participant> participant_;
   // The publishing thread's own (topics_ also read by status() under status_mutex_).
   std::vector<std::unique_ptr<Topic>> topics_;

@@ -414,7 +414,6 @@ std::optional<Ros2Settings> finalize_ros2(const ConfigDraft& d, Diagnostics& dia
       }
     }
   }
-  if (!ros2.pose && !ros2.odom && !ros2.tf) return std::nullopt;  // reported by ros2_publish
   return ros2;
 }
 

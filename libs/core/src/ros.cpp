@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "mocaplink/core/geodesy.hpp"
+
 namespace mocaplink::core {
 namespace {
 
@@ -32,11 +34,11 @@ std::optional<std::string> tokens_problem(std::string_view name) {
 }
 
 /// Rows of the rotation target ← NED (world) and target ← FRD (body) for each RosAxes.
+/// The matrix of ned_enu_swap (geodesy.hpp, the one NED ↔ ENU convention): its columns are the
+/// swapped unit vectors.
 Eigen::Matrix3d enu_from_ned() {
   Eigen::Matrix3d m;
-  m << 0, 1, 0,  // east = NED y
-      1, 0, 0,   // north = NED x
-      0, 0, -1;  // up = −down
+  for (int i = 0; i < 3; ++i) m.col(i) = ned_enu_swap(Eigen::Vector3d::Unit(i));
   return m;
 }
 

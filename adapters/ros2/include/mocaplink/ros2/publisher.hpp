@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "mocaplink/config/config.hpp"
 #include "mocaplink/core/axis_mapping.hpp"
 #include "mocaplink/core/body_estimate.hpp"
 #include "mocaplink/core/ros.hpp"
@@ -30,14 +31,8 @@ namespace mocaplink::ros2 {
 [[nodiscard]] std::string implementation();
 
 struct Ros2Options {
-  std::uint32_t domain_id = 0;
-  std::string ns = "mocap";
-  std::string frame_id = "world";
-  bool pose = true;
-  bool odom = true;
-  bool tf = true;
-  core::RosAxes axes = core::RosAxes::enu_flu;
-  std::string interface = "all";  ///< "all", "loopback" or an IPv4 address (config::Ros2Settings)
+  config::Ros2Settings settings;  ///< the checked [ros2] table (its domain_id is not read here)
+  std::uint32_t domain_id = 0;    ///< resolved: [ros2] domain_id, ROS_DOMAIN_ID or 0
   core::WorldAxisMapping world;   ///< [mocap] up / north: what RosAxes::mocap undoes
 };
 
