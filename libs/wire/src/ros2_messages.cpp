@@ -49,8 +49,10 @@ RosStamp ros_stamp_from_unix_ns(std::int64_t unix_ns) {
 CdrWriter::CdrWriter(std::vector<std::uint8_t>& out) : out_(out) {
   static_assert(std::endian::native == std::endian::little,
                 "CdrWriter writes host-order bytes: little-endian hosts only");
-  out_.clear();
-  out_.insert(out_.end(), {0x00, 0x01, 0x00, 0x00});  // CDR_LE, no options
+  // CDR_LE, no options: 00 01 00 00. Assigned, not inserted from a list: GCC 12's -O3
+  // array-bounds check misreads an initializer-list insert into an empty vector.
+  out_.assign(kEncapsulationSize, 0x00);
+  out_[1] = 0x01;
 }
 
 void CdrWriter::put(const void* bytes, std::size_t size) {
