@@ -22,10 +22,10 @@ else()
   pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
 endif()
 
-# ROS 2 over DDS (adapters/ros2): Fast DDS 2.x from Debian, in native Linux builds. Debian has no
-# Windows package, so that build leaves it out (`check` says so when [ros2] asks); the arm64 and
-# armhf cross roots (scripts/cross-sysroot) do not carry it yet, so those builds leave it out too.
-if(WIN32 OR CMAKE_CROSSCOMPILING)
+# ROS 2 over DDS (adapters/ros2): Fast DDS 2.x from Debian, in native Linux builds and in the
+# arm64 and armhf cross builds (scripts/cross-sysroot unpacks Debian's packages of it). Debian has
+# no Windows package, so that build leaves it out (`check` says so when [ros2] asks).
+if(WIN32)
   set(ros2_default OFF)
 else()
   set(ros2_default ON)
