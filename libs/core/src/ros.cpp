@@ -50,7 +50,10 @@ Matrix6d block_rotate(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, const 
   Matrix6d r = Matrix6d::Zero();
   r.topLeftCorner<3, 3>() = a;
   r.bottomRightCorner<3, 3>() = b;
-  return r * m * r.transpose();
+  // Exactly symmetric again: R Σ Rᵀ leaves (i, j) and (j, i) apart by rounding, and a subscriber
+  // that checks Σ == Σᵀ (or factors it) would reject the message.
+  const Matrix6d out = r * m * r.transpose();
+  return 0.5 * (out + out.transpose());
 }
 
 }  // namespace
