@@ -108,7 +108,7 @@ void print_ros2(const config::Ros2Settings& ros2, const Ros2Domain& domain) {
   }
   std::printf("  ros2: domain %u (%s), %s; %s; world frame %s, axes %s; interface %s; %s\n",
               domain.id, domain.from.c_str(), what.c_str(), bodies.c_str(), ros2.frame_id.c_str(),
-              std::string(core::to_string(ros2.axes)).c_str(), ros2.interface.c_str(),
+              std::string(core::to_string(ros2.axes)).c_str(), ros2.network_interface.c_str(),
               ros2::implementation().c_str());
 }
 

@@ -108,7 +108,7 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     v.running = s.running;
     v.error = s.error;
     v.domain_id = s.domain_id;
-    v.interface = s.interface;
+    v.network_interface = s.network_interface;
     v.ns = settings.ns;
     v.frame_id = settings.frame_id;
     v.axes = std::string(core::to_string(settings.axes));

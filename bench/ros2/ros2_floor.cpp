@@ -43,7 +43,9 @@ namespace wire = mocaplink::wire;
 namespace dds = mocaplink::ros2::detail;
 
 std::atomic<bool> g_stop{false};
-void on_signal(int /*sig*/) { g_stop = true; }
+void on_signal(int /*sig*/) {
+  g_stop = true;
+}
 
 // A stamp no real one equals (1985-02-10): its seconds' four bytes mark every stamp field.
 constexpr wire::RosStamp kSentinel{0x1D1D1D1D, 0};
@@ -209,7 +211,6 @@ int main(int argc, char** argv) {
                "ros2_floor: %llu frames, %llu samples written, %llu write errors, %llu queue "
                "overflows\n",
                static_cast<unsigned long long>(frames), static_cast<unsigned long long>(written),
-               static_cast<unsigned long long>(errors),
-               static_cast<unsigned long long>(overflows));
+               static_cast<unsigned long long>(errors), static_cast<unsigned long long>(overflows));
   return 0;
 }

@@ -13,7 +13,7 @@ namespace mocaplink::ros2::detail {
 
 struct ParticipantSettings {
   std::uint32_t domain_id = 0;
-  std::string interface = "all";  ///< "all", "loopback" or an IPv4 address
+  std::string network_interface = "all";  ///< "all", "loopback" or an IPv4 address
   std::string name = "mocaplink";
 };
 

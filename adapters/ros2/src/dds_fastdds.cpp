@@ -146,25 +146,25 @@ class FastDdsParticipant final : public Participant {
     auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
     qos.transport().use_builtin_transports = false;
     auto& builtin = qos.wire_protocol().builtin;
-    if (settings.interface == "loopback") {
+    if (settings.network_interface == "loopback") {
       udp->interfaceWhiteList.emplace_back("127.0.0.1");
       udp->maxInitialPeersRange = kLoopbackPeers;
       // No multicast at all: discovery by unicast to this host's well-known ports.
       builtin.metatrafficUnicastLocatorList.push_back(udp_locator("127.0.0.1"));
       builtin.initialPeersList.push_back(udp_locator("127.0.0.1"));
       qos.wire_protocol().default_unicast_locator_list.push_back(udp_locator("127.0.0.1"));
-    } else if (settings.interface != "all") {
+    } else if (settings.network_interface != "all") {
       // Fast DDS given an address no interface has says so and then uses every interface: the
       // traffic the user did not ask for. Refuse it here instead.
       const auto local = local_ipv4_addresses();
-      if (std::find(local.begin(), local.end(), settings.interface) == local.end()) {
+      if (std::find(local.begin(), local.end(), settings.network_interface) == local.end()) {
         std::string list;
         for (const auto& a : local) list += (list.empty() ? "" : ", ") + a;
-        error = settings.interface + " is not an address of this machine (its addresses: " +
+        error = settings.network_interface + " is not an address of this machine (its addresses: " +
                 (list.empty() ? "none" : list) + "); set [ros2] interface to one of them";
         return nullptr;
       }
-      udp->interfaceWhiteList.emplace_back(settings.interface);
+      udp->interfaceWhiteList.emplace_back(settings.network_interface);
     }
     qos.transport().user_transports.push_back(udp);
     auto* factory = dds::DomainParticipantFactory::get_instance();
@@ -172,7 +172,7 @@ class FastDdsParticipant final : public Participant {
         factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), qos);
     if (participant == nullptr) {
       error = "Fast DDS could not create a participant on domain " +
-              std::to_string(settings.domain_id) + " (interface " + settings.interface +
+              std::to_string(settings.domain_id) + " (interface " + settings.network_interface +
               "): is that an address of this machine, and are its ports free?";
       return nullptr;
     }

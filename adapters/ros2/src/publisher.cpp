@@ -50,11 +50,12 @@ class DdsPublisher final : public Publisher {
   explicit DdsPublisher(const Ros2Options& options)
       : options_(options), settings_(options_.settings) {
     status_.domain_id = options.domain_id;
-    status_.interface = settings_.interface;
+    status_.network_interface = settings_.network_interface;
     status_.implementation = detail::dds_implementation();
     std::string error;
     participant_ = detail::make_participant(
-        detail::ParticipantSettings{options.domain_id, settings_.interface, "mocaplink"}, error);
+        detail::ParticipantSettings{options.domain_id, settings_.network_interface, "mocaplink"},
+        error);
     if (!participant_) {
       status_.error = error;
       spdlog::error("ros2: no DDS participant, nothing is published: {}", error);
@@ -62,7 +63,7 @@ class DdsPublisher final : public Publisher {
     }
     status_.running = true;
     spdlog::info("ros2: DDS participant up ({}), domain {}, interface {}", status_.implementation,
-                 options.domain_id, settings_.interface);
+                 options.domain_id, settings_.network_interface);
     if (settings_.tf) tf_ = make_topic("/tf", "tf2_msgs", "TFMessage", kTfDepth, kTfSampleBytes);
     thread_ = std::thread([this] { run(); });
   }

@@ -229,7 +229,7 @@ void to_json(nlohmann::json& j, const Ros2View& ros2) {
   j = nlohmann::json{{"running", ros2.running},
                      {"error", text(ros2.error)},
                      {"domain_id", ros2.domain_id},
-                     {"interface", text(ros2.interface)},
+                     {"interface", text(ros2.network_interface)},
                      {"namespace", text(ros2.ns)},
                      {"frame_id", text(ros2.frame_id)},
                      {"axes", text(ros2.axes)},

@@ -367,7 +367,7 @@ std::optional<Ros2Settings> finalize_ros2(const ConfigDraft& d, Diagnostics& dia
   if (d.ros2_namespace.value) ros2.ns = *d.ros2_namespace.value;
   if (d.ros2_frame_id.value) ros2.frame_id = *d.ros2_frame_id.value;
   if (d.ros2_axes.value) ros2.axes = *d.ros2_axes.value;
-  if (d.ros2_interface.value) ros2.interface = *d.ros2_interface.value;
+  if (d.ros2_interface.value) ros2.network_interface = *d.ros2_interface.value;
   if (d.ros2_publish.value) {
     ros2.pose = (*d.ros2_publish.value)[0];
     ros2.odom = (*d.ros2_publish.value)[1];

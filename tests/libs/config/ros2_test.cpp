@@ -44,7 +44,7 @@ TEST(Ros2Config, AnEmptyTableTakesEveryDefault) {
   EXPECT_TRUE(r.odom);
   EXPECT_TRUE(r.tf);
   EXPECT_EQ(r.axes, core::RosAxes::enu_flu);
-  EXPECT_EQ(r.interface, "all");
+  EXPECT_EQ(r.network_interface, "all");
 }
 
 TEST(Ros2Config, EveryKeySet) {
@@ -67,7 +67,7 @@ interface = "loopback"
   EXPECT_TRUE(r.odom);
   EXPECT_TRUE(r.tf);
   EXPECT_EQ(r.axes, core::RosAxes::mocap);
-  EXPECT_EQ(r.interface, "loopback");
+  EXPECT_EQ(r.network_interface, "loopback");
   // The body that is not a ROS name is said, with the name it gets.
   EXPECT_THAT(
       warning_lines(result),
@@ -80,7 +80,7 @@ interface = "loopback"
 TEST(Ros2Config, AnInterfaceAddress) {
   const auto result = parse("[ros2]\ninterface = \"192.168.1.10\"\n");
   ASSERT_TRUE(result.ok());
-  EXPECT_EQ(result.config->ros2->interface, "192.168.1.10");
+  EXPECT_EQ(result.config->ros2->network_interface, "192.168.1.10");
 }
 
 TEST(Ros2Config, BadValuesAreErrorsWithTheirPlace) {

@@ -60,7 +60,7 @@ struct Ros2Status {
   bool running = false;  ///< the participant is up
   std::string error;     ///< why it is not (or the latest write error), "" when fine
   std::uint32_t domain_id = 0;
-  std::string interface;
+  std::string network_interface;
   std::string implementation;
   std::vector<TopicStatus> topics;     ///< in the order they were created
   std::uint64_t frames_published = 0;  ///< frames whose samples were written

@@ -311,11 +311,11 @@ struct Ros2View {
   bool running = false;  ///< the participant is up
   std::string error{};   ///< why not, or the latest write problem; "" when fine
   std::uint32_t domain_id = 0;
-  std::string interface {};      ///< "all", "loopback" or an address
-  std::string ns{};              ///< the namespace of the body topics ("" = none)
-  std::string frame_id{};        ///< the world frame
-  std::string axes{};            ///< "enu_flu" or "mocap"
-  std::string implementation{};  ///< "Fast DDS 2.9.1"
+  std::string network_interface{};  ///< "all", "loopback" or an address
+  std::string ns{};                 ///< the namespace of the body topics ("" = none)
+  std::string frame_id{};           ///< the world frame
+  std::string axes{};               ///< "enu_flu" or "mocap"
+  std::string implementation{};     ///< "Fast DDS 2.9.1"
   std::vector<Ros2TopicView> topics{};
   std::uint64_t frames_published = 0;
   std::uint64_t frames_dropped = 0;  ///< the publishing thread was behind

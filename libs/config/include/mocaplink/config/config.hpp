@@ -88,7 +88,7 @@ struct Ros2Settings {
   /// machine does by default), "loopback" (127.0.0.1 only, unicast discovery: this machine's ROS 2
   /// nodes, with ROS_LOCALHOST_ONLY=1 or ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST on theirs) or one
   /// IPv4 address of this machine (that interface only).
-  std::string interface = "all";
+  std::string network_interface = "all";
 };
 
 /// ROS_DOMAIN_ID as rcl reads it: unset or "" is 0; otherwise a whole number (decimal, or 0x… hex,
