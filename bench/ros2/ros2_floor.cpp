@@ -166,13 +166,8 @@ int main(int argc, char** argv) {
     }
     for (const Queued& f : batch) {
       ++frames;
-      const core::HostTime capture = mapper.on_frame(f.capture, f.received, f.latency);
-      const auto host_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-          mocaplink::io::host_now().time_since_epoch());
-      const auto capture_ns =
-          std::chrono::duration_cast<std::chrono::nanoseconds>(capture.time_since_epoch());
       const wire::RosStamp stamp = wire::ros_stamp_from_unix_ns(
-          mocaplink::io::unix_now_us() * 1000 + (capture_ns - host_ns).count());
+          mocaplink::io::unix_ns_of(mapper.on_frame(f.capture, f.received, f.latency)));
       for (const std::string& name : f.tracked) {
         auto [it, added] = bodies.try_emplace(name);
         auto& [pose, odom] = it->second;

@@ -184,15 +184,8 @@ class DdsPublisher final : public Publisher {
   }
 
   void send(const FrameUpdate& frame) {
-    // The capture time on the wall clock (ROS time): the host clock's offset taken now, so an NTP
-    // step is followed from the next frame on.
-    const auto host_ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(io::host_now().time_since_epoch());
-    const std::int64_t unix_ns = io::unix_now_us() * 1000;
-    const auto capture_ns =
-        std::chrono::duration_cast<std::chrono::nanoseconds>(frame.capture.time_since_epoch());
-    const wire::RosStamp stamp =
-        wire::ros_stamp_from_unix_ns(unix_ns + (capture_ns - host_ns).count());
+    // The capture time on the wall clock (ROS time), the clocks' offset taken now (io/clock.hpp).
+    const wire::RosStamp stamp = wire::ros_stamp_from_unix_ns(io::unix_ns_of(frame.capture));
     std::uint64_t errors = 0;
     transforms_.clear();
     for (const BodyUpdate& update : frame.bodies) {
