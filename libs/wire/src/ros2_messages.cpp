@@ -69,6 +69,15 @@ void CdrWriter::u8(std::uint8_t v) {
   put(&v, 1);
 }
 
+void CdrWriter::i8(std::int8_t v) {
+  put(&v, 1);
+}
+
+void CdrWriter::u64(std::uint64_t v) {
+  align(8);
+  put(&v, 8);
+}
+
 void CdrWriter::u32(std::uint32_t v) {
   align(4);
   put(&v, 4);

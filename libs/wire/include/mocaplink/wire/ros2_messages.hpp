@@ -35,7 +35,9 @@ class CdrWriter {
  public:
   explicit CdrWriter(std::vector<std::uint8_t>& out);
   void u8(std::uint8_t v);
+  void i8(std::int8_t v);
   void u32(std::uint32_t v);
+  void u64(std::uint64_t v);
   void i32(std::int32_t v);
   void f32(float v);
   void f64(double v);
