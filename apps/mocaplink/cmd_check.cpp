@@ -101,6 +101,7 @@ void print_ros2(const config::Ros2Settings& ros2, const Ros2Domain& domain) {
     if (on) what += (what.empty() ? "" : ", ") + core::ros_body_topic(ros2.ns, "BODY", name);
   }
   if (ros2.tf) what += (what.empty() ? "" : ", ") + std::string("/tf");
+  if (what.empty()) what = "no body topics (the ros2:// links only)";
   std::string bodies = "every body the source streams";
   if (!ros2.bodies.empty()) {
     bodies.clear();

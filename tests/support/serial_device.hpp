@@ -13,13 +13,13 @@ inline const std::string kSerialDevice = "COM3";
 inline const std::string kSerialUrlPrefix = "serial://COM3";
 inline const std::string kLinkForms =
     "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
-    "or serial://COMn?baud=N";
+    "serial://COMn?baud=N or ros2://[NAMESPACE]";
 #else
 inline const std::string kSerialDevice = "/dev/ttyUSB0";
 inline const std::string kSerialUrlPrefix = "serial:///dev/ttyUSB0";
 inline const std::string kLinkForms =
     "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
-    "or serial:///dev/DEVICE?baud=N";
+    "serial:///dev/DEVICE?baud=N or ros2://[NAMESPACE]";
 #endif
 
 }  // namespace mocaplink::testing_support

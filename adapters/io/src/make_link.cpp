@@ -1,5 +1,6 @@
 #include "mocaplink/io/make_link.hpp"
 
+#include <cassert>
 #include <utility>
 
 #include "mocaplink/io/link_serial.hpp"
@@ -26,6 +27,9 @@ std::unique_ptr<Link> make_link(asio::io_context& loop, const config::LinkUrl& u
       return std::make_unique<TcpInLink>(loop, url.address.host, url.address.port,
                                          std::move(options));
     case config::LinkKind::serial:
+      break;
+    case config::LinkKind::ros2:  // adapters/ros2 makes these (ros2::make_px4_link)
+      assert(false && "a ros2:// link is made by ros2::make_px4_link");
       break;
   }
   return std::make_unique<SerialLink>(loop, url.device, url.baud, std::move(options));

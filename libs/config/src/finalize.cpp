@@ -142,6 +142,47 @@ std::optional<std::string> px4_udp_warning(core::Profile profile, const LinkUrl&
          advice;
 }
 
+/// A ros2:// link (docs/ros2.md "PX4 over uXRCE-DDS") reaches a PX4 over DDS: the `px4` profile
+/// (auto means it), on the [ros2] table's domain and interface; nothing of MAVLink's own (signing,
+/// a ground station's traffic) can go that way. False when the vehicle is refused.
+bool check_ros2_link(const VehicleDraft& v, const ConfigDraft& d, Vehicle& vehicle,
+                     Diagnostics& diagnostics) {
+  bool ok = true;
+  const std::string url = to_string(vehicle.link);
+  if (!d.ros2_header) {
+    diagnostics.error(v.link.where, v.link.key,
+                      "link " + url +
+                          " is on the ROS 2 graph: add a [ros2] table (its domain_id "
+                          "and interface; publish = [] if no body topics are wanted)");
+    ok = false;
+  }
+  core::Profile& profile = vehicle.spec.profile;
+  if (profile == core::Profile::automatic) profile = core::Profile::px4;  // only PX4 speaks it
+  if (profile != core::Profile::px4) {
+    diagnostics.error(v.profile.where, v.profile.key,
+                      "link " + url +
+                          " feeds PX4's vehicle_visual_odometry: profile must be "
+                          "\"px4\" (or \"auto\"), got \"" +
+                          std::string(core::to_string(profile)) + "\"");
+    ok = false;
+  }
+  if (vehicle.spec.signing_key) {
+    diagnostics.error(v.signing_key.where, v.signing_key.key,
+                      "link " + url +
+                          " carries no MAVLink, so nothing is signed: remove "
+                          "signing_key, or reach the vehicle by a MAVLink link");
+    ok = false;
+  }
+  if (!vehicle.gcs.empty()) {
+    diagnostics.error(v.gcs.where, v.gcs.key,
+                      "link " + url +
+                          " carries no MAVLink, so no ground station's traffic "
+                          "can go through it: remove gcs, or reach the vehicle by a MAVLink link");
+    ok = false;
+  }
+  return ok;
+}
+
 std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft& d,
                                         const MocapSettings& mocap, bool have_origin,
                                         Diagnostics& diagnostics) {
@@ -220,6 +261,9 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   if (auto warning = px4_udp_warning(out.profile, vehicle.link)) {
     diagnostics.warning(v.link.where, v.link.key, *warning);
   }
+  if (vehicle.link.kind == LinkKind::ros2 && !check_ros2_link(v, d, vehicle, diagnostics)) {
+    return std::nullopt;
+  }
   if (vehicle.link.kind == LinkKind::serial) {
     // The one bandwidth rule (core::serial_bandwidth_warning): `check`, `run` and a dashboard
     // POST all report it from here.
@@ -294,6 +338,14 @@ void cross_check_vehicles(const ConfigDraft& d, Diagnostics& diagnostics) {
         break;
       }
       if (*first.link.value != *v.link.value) continue;
+      if (v.link.value->kind == LinkKind::ros2) {
+        // One topic, two writers: PX4 would fuse both vehicles' poses.
+        diagnostics.error(v.link.where, v.link.key,
+                          "link " + to_string(*v.link.value) + " is vehicle " + quoted(first_name) +
+                              "'s (" + describe(first.link.where) +
+                              "): each PX4 needs its own namespace (uxrce_dds_client -n)");
+        break;
+      }
       if (v.system_id.value && first.system_id.value &&
           *v.system_id.value == *first.system_id.value) {
         diagnostics.error(v.system_id.where, v.system_id.key,
@@ -372,6 +424,14 @@ std::optional<Ros2Settings> finalize_ros2(const ConfigDraft& d, Diagnostics& dia
     ros2.pose = (*d.ros2_publish.value)[0];
     ros2.odom = (*d.ros2_publish.value)[1];
     ros2.tf = (*d.ros2_publish.value)[2];
+    const bool px4_links = std::any_of(d.vehicles.begin(), d.vehicles.end(), [](const auto& v) {
+      return v.link.value && v.link.value->kind == LinkKind::ros2;
+    });
+    if (!ros2.pose && !ros2.odom && !ros2.tf && !px4_links) {
+      diagnostics.error(d.ros2_publish.where, d.ros2_publish.key,
+                        "is empty: list at least one of \"pose\", \"odom\", \"tf\" (or remove "
+                        "[ros2]; an empty list is for a [ros2] table only ros2:// links use)");
+    }
   }
   if (d.ros2_bodies.value) {
     ros2.bodies = *d.ros2_bodies.value;

@@ -433,13 +433,7 @@ void ros2_publish(ConfigDraft& d, const Value& v, Diagnostics& diag) {
     }
     slot = true;
   }
-  if (v.list().empty()) {
-    assign(d.ros2_publish, v,
-           ValueOrError<std::array<bool, 3>>::failure(
-               "is empty: list at least one of \"pose\", \"odom\", \"tf\" (or remove [ros2])"),
-           diag);
-    return;
-  }
+  // An empty list is for a [ros2] table that only ros2:// links use (finalize_ros2 checks).
   assign(d.ros2_publish, v, ValueOrError<std::array<bool, 3>>(chosen), diag);
 }
 void ros2_axes(ConfigDraft& d, const Value& v, Diagnostics& diag) {

@@ -11,18 +11,19 @@
 namespace mocaplink::config {
 namespace {
 
-constexpr std::array<std::string_view, 5> kSchemes = {"udp", "udpin", "tcp", "tcpin", "serial"};
+constexpr std::array<std::string_view, 6> kSchemes = {"udp",   "udpin",  "tcp",
+                                                      "tcpin", "serial", "ros2"};
 // Serial devices are named the platform's way: a COM port on Windows, a device path on Linux.
 #ifdef _WIN32
 constexpr std::string_view kForms =
     "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
-    "or serial://COMn?baud=N";
+    "serial://COMn?baud=N or ros2://[NAMESPACE]";
 constexpr std::string_view kSerialRule = "serial device must be a COM port name, as in ";
 constexpr std::string_view kSerialExample = "serial://COM3?baud=921600";
 #else
 constexpr std::string_view kForms =
     "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
-    "or serial:///dev/DEVICE?baud=N";
+    "serial:///dev/DEVICE?baud=N or ros2://[NAMESPACE]";
 constexpr std::string_view kSerialRule = "serial device must be an absolute path, as in ";
 constexpr std::string_view kSerialExample = "serial:///dev/ttyUSB0?baud=921600";
 #endif
@@ -184,6 +185,36 @@ Result parse_serial(const UrlParts& parts) {
   return link;
 }
 
+/// ros2://[NAMESPACE]: PX4's uXRCE-DDS namespace (its `-n`), ROS name segments separated by '/'.
+Result parse_ros2(const UrlParts& parts) {
+  if (auto error = check_query_keys(parts, {}, "ros2://"); !error.empty()) {
+    return Result::failure(error);
+  }
+  std::string_view ns = parts.body;
+  while (!ns.empty() && ns.front() == '/') ns.remove_prefix(1);
+  while (!ns.empty() && ns.back() == '/') ns.remove_suffix(1);
+  bool segment_start = true;
+  for (const char c : ns) {
+    const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+    const bool digit = c >= '0' && c <= '9';
+    if (c == '/' && !segment_start) {
+      segment_start = true;
+      continue;
+    }
+    if (!(letter || (digit && !segment_start))) {
+      return Result::failure(
+          "ros2:// takes PX4's namespace: letters, digits and '_' in segments separated by '/', "
+          "none starting with a digit (as in ros2://px4_1, or ros2:// for none), got " +
+          detail::quoted(parts.body));
+    }
+    segment_start = false;
+  }
+  LinkUrl link;
+  link.kind = LinkKind::ros2;
+  link.ros2_namespace = std::string(ns);
+  return link;
+}
+
 }  // namespace
 
 const char* to_string(LinkKind kind) {
@@ -204,12 +235,14 @@ ValueOrError<LinkUrl> parse_link_url(std::string_view text) {
   if (p.scheme == "tcp") return parse_network(LinkKind::tcp, p);
   if (p.scheme == "tcpin") return parse_network(LinkKind::tcpin, p);
   if (p.scheme == "serial") return parse_serial(p);
+  if (p.scheme == "ros2") return parse_ros2(p);
   return Result::failure("unknown link scheme " + detail::quoted(p.scheme) +
                          detail::did_you_mean(p.scheme, kSchemes) + " (expected " +
                          std::string(kForms) + ")");
 }
 
 std::string to_string(const LinkUrl& link) {
+  if (link.kind == LinkKind::ros2) return "ros2://" + link.ros2_namespace;
   if (link.kind == LinkKind::serial) {
     return "serial://" + link.device + "?baud=" + std::to_string(link.baud);
   }

@@ -123,13 +123,44 @@ TEST(Ros2Config, NamesThatBreakRosRules) {
               ElementsAre(testing::HasSubstr("it may not hold \"__\"")));
   EXPECT_THAT(error_lines(parse("[ros2]\npublish = []\n")),
               ElementsAre("r.toml:4:11: ros2.publish: is empty: list at least one of \"pose\", "
-                          "\"odom\", \"tf\" (or remove [ros2])"));
+                          "\"odom\", \"tf\" (or remove [ros2]; an empty list is for a [ros2] "
+                          "table only ros2:// links use)"));
   EXPECT_THAT(error_lines(parse("[ros2]\npublish = [\"tf\", \"tf\"]\n")),
               ElementsAre("r.toml:4:11: ros2.publish: \"tf\" is listed twice"));
   // An empty namespace is allowed: topics at the root.
   const auto root = parse("[ros2]\nnamespace = \"\"\n");
   ASSERT_TRUE(root.ok());
   EXPECT_EQ(root.config->ros2->ns, "");
+}
+
+TEST(Ros2Config, Px4LinksNeedTheTableAndThePx4Profile) {
+  const std::string vehicle =
+      "[[vehicle]]\nname = \"q1\"\nbody = \"Quad1\"\nlink = \"ros2://px4_1\"\n"
+      "system_id = 2\nprofile = \"auto\"\n";
+  // With [ros2] (nothing else published): auto means px4, the only autopilot on that path.
+  const auto ok = parse("[ros2]\npublish = []\n" + vehicle);
+  ASSERT_TRUE(ok.ok()) << testing::PrintToString(error_lines(ok));
+  EXPECT_EQ(ok.config->vehicles.at(0).spec.profile, core::Profile::px4);
+  EXPECT_EQ(ok.config->vehicles.at(0).link.ros2_namespace, "px4_1");
+  EXPECT_FALSE(ok.config->ros2->pose || ok.config->ros2->odom || ok.config->ros2->tf);
+  // Without [ros2]: no domain to join.
+  EXPECT_THAT(error_lines(parse(vehicle)),
+              ElementsAre(testing::HasSubstr("vehicle[1].link: link ros2://px4_1 is on the ROS 2 "
+                                             "graph: add a [ros2] table")));
+  // Another profile, a signing key, ground stations: none can go over DDS.
+  std::string ardupilot = vehicle;
+  ardupilot.replace(ardupilot.find("\"auto\""), 6, "\"ardupilot\"");
+  EXPECT_THAT(error_lines(parse("[ros2]\n" + ardupilot)),
+              ElementsAre(testing::HasSubstr("profile must be \"px4\" (or \"auto\")")));
+  EXPECT_THAT(error_lines(parse("[ros2]\n" + vehicle + "gcs = [\"udp://127.0.0.1:14550\"]\n")),
+              ElementsAre(testing::HasSubstr("no ground station's traffic")));
+  // Two vehicles on one namespace: PX4 would fuse both.
+  std::string second = vehicle;
+  second.replace(second.find("q1"), 2, "q2");
+  second.replace(second.find("Quad1"), 5, "Quad2");
+  second.replace(second.find("system_id = 2"), 13, "system_id = 3");
+  EXPECT_THAT(error_lines(parse("[ros2]\n" + vehicle + second)),
+              ElementsAre(testing::HasSubstr("each PX4 needs its own namespace")));
 }
 
 TEST(Ros2Config, BodiesThatCannotBePublished) {

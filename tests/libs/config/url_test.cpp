@@ -117,6 +117,26 @@ TEST(LinkUrl, RejectsBadEndpointForms) {
             "unknown link scheme \"tcpn\"; did you mean \"tcp\"? (expected " + kLinkForms + ")");
 }
 
+TEST(LinkUrl, Ros2NamespacesOfPx4) {
+  // PX4's uxrce_dds_client -n NAMESPACE (SITL instance N > 0: px4_N), or none.
+  const auto none = parse_link_url("ros2://");
+  ASSERT_TRUE(none) << none.error();
+  EXPECT_EQ(none.value().kind, LinkKind::ros2);
+  EXPECT_EQ(none.value().ros2_namespace, "");
+  EXPECT_EQ(to_string(none.value()), "ros2://");
+  const auto sitl = parse_link_url("ros2://px4_1");
+  ASSERT_TRUE(sitl) << sitl.error();
+  EXPECT_EQ(sitl.value().ros2_namespace, "px4_1");
+  EXPECT_EQ(to_string(parse_link_url("ros2:///lab/uav_2/").value()), "ros2://lab/uav_2");
+  EXPECT_FALSE(listens(sitl.value()));
+  EXPECT_EQ(local_address(sitl.value()), std::nullopt);
+  for (const char* bad : {"ros2://1uav", "ros2://uav-1", "ros2://a//b", "ros2://px4_1?x=1"}) {
+    EXPECT_FALSE(parse_link_url(bad)) << bad;
+  }
+  EXPECT_NE(parse_link_url("ros2://uav-1").error().find("ros2:// takes PX4's namespace"),
+            std::string::npos);
+}
+
 TEST(LinkUrl, LocalPortsThatCannotBeSharedInOneProcess) {
   const auto link = [](const char* url) { return parse_link_url(url).value(); };
   // The same UDP port on overlapping addresses: the second socket could not bind it.

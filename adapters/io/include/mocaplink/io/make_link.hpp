@@ -12,7 +12,8 @@
 namespace mocaplink::io {
 
 /// Builds (does not start) the link `url` names, run on `loop`: udp:// → UdpLink, udpin:// →
-/// UdpInLink, tcp:// → TcpLink, tcpin:// → TcpInLink, serial:// → SerialLink. Never fails: a link
+/// UdpInLink, tcp:// → TcpLink, tcpin:// → TcpInLink, serial:// → SerialLink (ros2:// is not
+/// an io link: adapters/ros2's make_px4_link builds it). Never fails: a link
 /// that cannot open shows it in its state.
 [[nodiscard]] std::unique_ptr<Link> make_link(asio::io_context& loop, const config::LinkUrl& url,
                                               LinkOptions options);

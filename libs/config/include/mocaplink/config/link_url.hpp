@@ -7,6 +7,8 @@
 //   tcp://HOST:PORT                     connect to the vehicle's TCP server
 //   tcpin://[ADDR]:PORT                 a TCP server for one vehicle connection at a time
 //   serial:///dev/ttyUSB0?baud=921600   a serial port (COMn on Windows)
+//   ros2://[NAMESPACE]                  a PX4 through its uXRCE-DDS Agent, on the [ros2] domain
+//                                       (docs/ros2.md "PX4 over uXRCE-DDS")
 // Syntax only; the io adapter opens them (io::make_link).
 #pragma once
 
@@ -20,9 +22,9 @@
 
 namespace mocaplink::config {
 
-enum class LinkKind { udp, udpin, tcp, tcpin, serial };
+enum class LinkKind { udp, udpin, tcp, tcpin, serial, ros2 };
 
-/// "udp", "udpin", "tcp", "tcpin", "serial".
+/// "udp", "udpin", "tcp", "tcpin", "serial", "ros2".
 [[nodiscard]] const char* to_string(LinkKind kind);
 
 /// A parsed link.
@@ -31,12 +33,15 @@ enum class LinkKind { udp, udpin, tcp, tcpin, serial };
 ///   udpin, tcpin  `address` is the local address to listen on (host empty: every interface).
 ///   serial        `device` (an absolute path such as "/dev/ttyUSB0", or COMn on Windows) and
 ///                 `baud` (a standard termios rate, default 57600).
+///   ros2          `ros2_namespace`: PX4's topic namespace without slashes at either end ("" for
+///                 none, "px4_1"); the vehicle's topics are /NAMESPACE/fmu/in|out/....
 struct LinkUrl {
   LinkKind kind = LinkKind::udp;
   HostPort address;
   std::optional<HostPort> bind;
   std::string device;
   std::uint32_t baud = 0;
+  std::string ros2_namespace;
   friend bool operator==(const LinkUrl&, const LinkUrl&) = default;
 };
 
