@@ -469,6 +469,16 @@ int run_vehicle_setup(const Options& options, const sources::SourceRegistry& sou
   const config::Config& cfg = *result.config;
   for (const auto& v : cfg.vehicles) {
     if (v.spec.name != options.name) continue;
+    if (v.link.kind == config::LinkKind::ros2) {
+      // PX4's uXRCE-DDS topics carry no parameters (docs/ros2.md "PX4 over uXRCE-DDS").
+      std::fprintf(stderr,
+                   "mocaplink vehicle setup: vehicle \"%s\" is reached by %s (PX4's uXRCE-DDS "
+                   "topics), which carry no parameters, so its set-up list cannot be read: run "
+                   "the set-up over a MAVLink link to the same PX4 (a copy of the config with "
+                   "link = \"udp://...\" or \"serial://...\"; docs/setup.md)\n",
+                   v.spec.name.c_str(), config::to_string(v.link).c_str());
+      return 2;
+    }
     if (const auto code = setup_through_daemon(cfg, v, options)) return *code;
     LinkPeer peer(v);
     return SetupFlow(peer, options).run();

@@ -133,6 +133,11 @@ class Daemon {
   void dispatch(const core::BridgeOutput& out);
   void publish_ros2();
   void start_ros2();
+  /// The graph the ros2:// links join ([ros2]'s domain and interface); nullopt without [ros2].
+  [[nodiscard]] std::optional<Ros2Graph> ros2_graph() const {
+    if (!config_.ros2) return std::nullopt;
+    return Ros2Graph{settings_.ros2_domain_id, config_.ros2->network_interface};
+  }
   /// Sends messages[first, end) (one vehicle's run) to that vehicle's link, in batches.
   void send_run(std::span<const core::OutgoingMessage> messages);
   /// After messages went out: the recording and each signed vehicle's signing clock.
@@ -224,7 +229,7 @@ void Daemon::open_links() {
   const auto& vehicles = config_.vehicles;
   vehicles_.reserve(vehicles.size());
   for (std::size_t i = 0; i < vehicles.size(); ++i) {
-    vehicles_.push_back(make_vehicle_link(loop_, vehicles[i]));
+    vehicles_.push_back(make_vehicle_link(loop_, vehicles[i], ros2_graph()));
     start_link(i);
     ground_stations_.add_vehicle(i, vehicles[i]);
   }
@@ -277,7 +282,7 @@ std::optional<web::ApiError> Daemon::add_vehicle(const std::vector<config::Vehic
   }
   if (paused) (void)bridge_.set_paused(slot, true);
   if (slot >= vehicles_.size()) vehicles_.resize(slot + 1);
-  vehicles_[slot] = make_vehicle_link(loop_, vehicle);
+  vehicles_[slot] = make_vehicle_link(loop_, vehicle, ros2_graph());
   start_link(slot);
   ground_stations_.add_vehicle(slot, vehicle);
   restore_signing(slot, vehicle);

@@ -7,6 +7,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <asio/io_context.hpp>
 
@@ -21,10 +23,18 @@ struct VehicleLink {
   std::uint64_t last_signing_10us = 0;  ///< timestamp of the latest signed frame sent (0: none)
 };
 
-/// Builds (does not start) the vehicle's link (io::make_link). With a signing key, incoming frames
+/// The ROS 2 graph a ros2:// link joins: the [ros2] table's resolved domain and its interface.
+struct Ros2Graph {
+  std::uint32_t domain_id = 0;
+  std::string network_interface;
+};
+
+/// Builds (does not start) the vehicle's link (io::make_link; ros2:// → ros2::make_px4_link on
+/// `ros2`, which the config guarantees for such a link). With a signing key, incoming frames
 /// are verified and unsigned ones rejected. (A serial link too slow for the profile is a
 /// configuration warning: core::serial_bandwidth_warning, given by the config for `check`, `run`
 /// and the dashboard.)
-[[nodiscard]] VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& vehicle);
+[[nodiscard]] VehicleLink make_vehicle_link(asio::io_context& loop, const config::Vehicle& vehicle,
+                                            const std::optional<Ros2Graph>& ros2 = std::nullopt);
 
 }  // namespace mocaplink::app

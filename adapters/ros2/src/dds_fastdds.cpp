@@ -18,6 +18,10 @@
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
@@ -52,9 +56,10 @@ class OpaqueType final : public dds::TopicDataType {
     payload->encapsulation = CDR_LE;
     return true;
   }
-  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* /*payload*/,
-                   void* /*data*/) override {
-    return false;  // write-only
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override {
+    auto& bytes = *static_cast<std::vector<std::uint8_t>*>(data);
+    bytes.assign(payload->data, payload->data + payload->length);
+    return true;
   }
   std::function<std::uint32_t()> getSerializedSizeProvider(void* data) override {
     return [data] {
@@ -108,6 +113,52 @@ class FastDdsWriter final : public Writer {
   dds::DataWriter* writer_;
   std::unique_ptr<MatchListener> listener_;  // outlives the DataWriter (deleted first)
   std::vector<std::uint8_t> sample_;
+};
+
+class ReadListener final : public dds::DataReaderListener {
+ public:
+  explicit ReadListener(const ReaderSettings& settings)
+      : on_sample_(settings.on_sample), on_matched_(settings.on_matched) {}
+  void on_data_available(dds::DataReader* reader) override {
+    dds::SampleInfo info;
+    while (reader->take_next_sample(&sample_, &info) ==
+           eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data && on_sample_) on_sample_(sample_);
+    }
+  }
+  void on_subscription_matched(dds::DataReader* /*reader*/,
+                               const dds::SubscriptionMatchedStatus& info) override {
+    if (on_matched_) on_matched_(static_cast<std::uint32_t>(std::max(0, info.current_count)));
+  }
+
+ private:
+  std::function<void(std::span<const std::uint8_t>)> on_sample_;
+  std::function<void(std::uint32_t)> on_matched_;
+  std::vector<std::uint8_t> sample_;  // the DDS thread's own
+};
+
+class FastDdsReader final : public Reader {
+ public:
+  FastDdsReader(dds::DomainParticipant* participant, dds::Subscriber* subscriber, dds::Topic* topic,
+                dds::DataReader* reader, std::unique_ptr<ReadListener> listener)
+      : participant_(participant),
+        subscriber_(subscriber),
+        topic_(topic),
+        reader_(reader),
+        listener_(std::move(listener)) {}
+  ~FastDdsReader() override {
+    // Detached first: Fast DDS waits for a listener call in progress, then calls no more.
+    (void)reader_->set_listener(nullptr);
+    (void)subscriber_->delete_datareader(reader_);
+    (void)participant_->delete_topic(topic_);
+  }
+
+ private:
+  dds::DomainParticipant* participant_;
+  dds::Subscriber* subscriber_;
+  dds::Topic* topic_;
+  dds::DataReader* reader_;
+  std::unique_ptr<ReadListener> listener_;  // outlives the DataReader
 };
 
 /// This machine's IPv4 addresses ("127.0.0.1, 192.168.1.10").
@@ -177,12 +228,15 @@ class FastDdsParticipant final : public Participant {
       return nullptr;
     }
     dds::Publisher* publisher = participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
-    if (publisher == nullptr) {
+    dds::Subscriber* subscriber = participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+    if (publisher == nullptr || subscriber == nullptr) {
+      (void)participant->delete_contained_entities();
       (void)factory->delete_participant(participant);
-      error = "Fast DDS could not create a publisher";
+      error = "Fast DDS could not create a publisher and a subscriber";
       return nullptr;
     }
-    return std::unique_ptr<FastDdsParticipant>(new FastDdsParticipant(participant, publisher));
+    return std::unique_ptr<FastDdsParticipant>(
+        new FastDdsParticipant(participant, publisher, subscriber));
   }
 
   ~FastDdsParticipant() override {
@@ -192,19 +246,8 @@ class FastDdsParticipant final : public Participant {
 
   std::unique_ptr<Writer> make_writer(const WriterSettings& settings, std::string& error) override {
     const std::lock_guard lock(mutex_);
-    if (participant_->find_type(settings.type).empty()) {
-      dds::TypeSupport type(new OpaqueType(settings.type, settings.max_sample_bytes));
-      if (type.register_type(participant_) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-        error = "cannot register type " + settings.type;
-        return nullptr;
-      }
-    }
-    dds::Topic* topic =
-        participant_->create_topic(settings.topic, settings.type, dds::TOPIC_QOS_DEFAULT);
-    if (topic == nullptr) {
-      error = "cannot create topic " + settings.topic;
-      return nullptr;
-    }
+    dds::Topic* topic = topic_for(settings.topic, settings.type, settings.max_sample_bytes, error);
+    if (topic == nullptr) return nullptr;
     dds::DataWriterQos wqos = dds::DATAWRITER_QOS_DEFAULT;
     // What every subscriber matches (ros2-dds.md §2): reliable reaches reliable and best-effort
     // readers; volatile reaches volatile ones (tf2's and rclcpp's defaults); keep-last never
@@ -229,12 +272,55 @@ class FastDdsParticipant final : public Participant {
     return result;
   }
 
+  std::unique_ptr<Reader> make_reader(const ReaderSettings& settings, std::string& error) override {
+    const std::lock_guard lock(mutex_);
+    dds::Topic* topic = topic_for(settings.topic, settings.type, settings.max_sample_bytes, error);
+    if (topic == nullptr) return nullptr;
+    dds::DataReaderQos rqos = dds::DATAREADER_QOS_DEFAULT;
+    // Best effort matches every writer; volatile, keep-last: the newest sample is the one wanted.
+    rqos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
+    rqos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+    rqos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    rqos.history().depth = static_cast<std::int32_t>(settings.depth);
+    rqos.type_consistency().representation.m_value.clear();
+    rqos.type_consistency().representation.m_value.push_back(dds::XCDR_DATA_REPRESENTATION);
+    rqos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::DYNAMIC_REUSABLE_MEMORY_MODE;
+    auto listener = std::make_unique<ReadListener>(settings);
+    dds::DataReader* dr = subscriber_->create_datareader(topic, rqos, listener.get());
+    if (dr == nullptr) {
+      (void)participant_->delete_topic(topic);
+      error = "cannot create a reader for " + settings.topic;
+      return nullptr;
+    }
+    return std::make_unique<FastDdsReader>(participant_, subscriber_, topic, dr,
+                                           std::move(listener));
+  }
+
  private:
-  FastDdsParticipant(dds::DomainParticipant* participant, dds::Publisher* publisher)
-      : participant_(participant), publisher_(publisher) {}
+  FastDdsParticipant(dds::DomainParticipant* participant, dds::Publisher* publisher,
+                     dds::Subscriber* subscriber)
+      : participant_(participant), publisher_(publisher), subscriber_(subscriber) {}
+
+  /// A new Topic object for `name` (each writer and reader deletes its own), its type registered
+  /// the first time. Under mutex_.
+  dds::Topic* topic_for(const std::string& name, const std::string& type_name,
+                        std::uint32_t max_bytes, std::string& error) {
+    if (participant_->find_type(type_name).empty()) {
+      dds::TypeSupport type(new OpaqueType(type_name, max_bytes));
+      if (type.register_type(participant_) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+        error = "cannot register type " + type_name;
+        return nullptr;
+      }
+    }
+    dds::Topic* topic = participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+    if (topic == nullptr) error = "cannot create topic " + name;
+    return topic;
+  }
+
   std::mutex mutex_;
   dds::DomainParticipant* participant_;
   dds::Publisher* publisher_;
+  dds::Subscriber* subscriber_;
 };
 
 }  // namespace

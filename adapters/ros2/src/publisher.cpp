@@ -53,7 +53,7 @@ class DdsPublisher final : public Publisher {
     status_.network_interface = settings_.network_interface;
     status_.implementation = detail::dds_implementation();
     std::string error;
-    participant_ = detail::make_participant(
+    participant_ = detail::shared_participant(
         detail::ParticipantSettings{options.domain_id, settings_.network_interface, "mocaplink"},
         error);
     if (!participant_) {
@@ -232,8 +232,8 @@ class DdsPublisher final : public Publisher {
   }
 
   const Ros2Options options_;
-  const config::Ros2Settings& settings_;  // options_.settings
-  std::unique_ptr<detail::Participant> participant_;
+  const config::Ros2Settings& settings_;              // options_.settings
+  std::shared_ptr<detail::Participant> participant_;  // the process's (dds.hpp)
   // The publishing thread's own (topics_ also read by status() under status_mutex_).
   std::vector<std::unique_ptr<Topic>> topics_;
   std::unordered_map<std::string, Body> bodies_;         // by mocap name
