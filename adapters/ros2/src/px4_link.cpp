@@ -115,15 +115,11 @@ class Px4DdsLink final : public io::Link {
     }
     const auto parsed = mavlink::parse_frame(frame);
     if (!parsed || parsed->msgid != mavlink::Odometry::kId) {
-      ++not_carried_;
       return true;  // nothing to carry over DDS: not a loss
     }
     const auto message = mavlink::decode_message(*parsed);
     const auto* odometry = message ? std::get_if<mavlink::Odometry>(&*message) : nullptr;
-    if (odometry == nullptr) {
-      ++not_carried_;
-      return true;
-    }
+    if (odometry == nullptr) return true;
     // time_usec is the capture time on the host's steady clock (core/sender_clock.hpp).
     const core::HostTime capture{std::chrono::microseconds(odometry->time_usec)};
     const auto sample_us = static_cast<std::uint64_t>(io::unix_ns_of(capture) / 1000);
@@ -152,15 +148,14 @@ class Px4DdsLink final : public io::Link {
     if (state() != io::TransportState::closed) set_state(io::TransportState::closed, "closed");
   }
 
-  [[nodiscard]] bool sends_in_place() const noexcept override { return false; }
   [[nodiscard]] std::size_t backlog_bytes() const noexcept override { return 0; }
   [[nodiscard]] std::string url() const override { return "ros2://" + settings_.ns; }
 
  private:
-  void read(const char* name, std::string_view type, std::uint32_t max_bytes,
+  void read(const char* topic_name, std::string_view type, std::uint32_t max_bytes,
             std::function<void(std::span<const std::uint8_t>)> on_loop) {
     detail::ReaderSettings rs;
-    rs.topic = px4_topic(settings_.ns, "out", name);
+    rs.topic = px4_topic(settings_.ns, "out", topic_name);
     rs.type = std::string(type);
     rs.depth = 1;
     rs.max_sample_bytes = max_bytes;
@@ -175,13 +170,11 @@ class Px4DdsLink final : public io::Link {
     std::string error;
     auto reader = participant_->make_reader(rs, error);
     if (!reader) {
-      spdlog::warn("{}: cannot read {}: {}", name_of(), rs.topic, error);
+      spdlog::warn("{}: cannot read {}: {}", name(), rs.topic, error);
       return;
     }
     readers_.push_back(std::move(reader));
   }
-
-  [[nodiscard]] std::string name_of() const { return options_.name; }
 
   /// The time_boot_ms of a sample stamped `timestamp_us` (see the file comment).
   std::uint32_t boot_ms(std::uint64_t timestamp_us) {
@@ -262,7 +255,6 @@ class Px4DdsLink final : public io::Link {
   std::unique_ptr<detail::Writer> writer_;
   std::vector<std::unique_ptr<detail::Reader>> readers_;
   std::vector<std::uint8_t> encoded_;
-  std::uint64_t not_carried_ = 0;
   std::uint8_t seq_ = 0;
   std::optional<core::HostTime> last_heard_;
   core::HostTime heard_since_{};
