@@ -195,7 +195,7 @@ function renderSetup(card, v) {
   $('.v-autopilot', r).textContent = ap.name === 'unknown'
     ? 'not identified yet'
     : `${ap.name}${ap.version ? ` ${ap.version}` : ''} · rules of profile ${ap.profile_in_effect}`;
-  const kind = { ready: 'ok', blocked: 'bad', 'no answer': 'warn', unsupported: 'warn' }[setup.state] || 'warn';
+  const kind = { ready: 'ok', blocked: 'bad', 'no answer': 'warn', unsupported: 'warn', unavailable: 'warn' }[setup.state] || 'warn';
   pill($('.v-setup-state', r), setup.state, kind, 'v-setup-state');
   // Rows are kept and only their text changes, so a row the operator is reading
   // (or selecting) is not replaced by a copy on every status update.
@@ -242,7 +242,9 @@ function renderSetup(card, v) {
   card.apply.disabled = armed || !fixes.length || !['ready', 'blocked'].includes(setup.state);
   card.apply.textContent = fixes.length ? `Apply ${fixes.length} fix${fixes.length > 1 ? 'es' : ''}` : 'Apply fixes';
   card.apply.title = armed ? 'the vehicle is armed: nothing is written' : '';
-  card.reboot.disabled = armed || v.link_state !== 'up';
+  card.reboot.disabled = armed || v.link_state !== 'up' || setup.state === 'unavailable';
+  // A link without parameters (PX4 over uXRCE-DDS): the list is what to check over MAVLink.
+  $('.v-setup-why', r).textContent = setup.note ? `${setup.note}.` : '';
   const notes = [];
   if (setup.reboot_for.length) notes.push(`Reboot the vehicle for ${setup.reboot_for.join(', ')} to take effect.`);
   if (v.origin.advice) notes.push(`Origin: ${v.origin.advice}.`);
@@ -273,9 +275,10 @@ function renderVehicle(card, v, fromPatch = false) {
   const clock = $('.v-clock', r);
   const c = v.clock;
   const stamps = c.pose_stamps ? ` · poses stamped at ${c.pose_stamps}` : '';
-  clock.textContent = c.rate_ppm === null ? `${c.verdict}${stamps}` : `${c.verdict}, ${num(c.rate_ppm, 0, ' ppm')}${stamps}`;
+  const verdict = c.verdict === null ? 'not measured on this link' : c.verdict;
+  clock.textContent = c.rate_ppm === null ? `${verdict}${stamps}` : `${verdict}, ${num(c.rate_ppm, 0, ' ppm')}${stamps}`;
   clock.title = c.text;
-  clock.className = `v-clock ${c.verdict}`;
+  clock.className = `v-clock ${c.verdict === null ? 'off' : c.verdict}`;
   const origin = $('.v-origin', r);
   origin.textContent = { not_needed: 'not needed', sending: 'not confirmed', confirmed: 'confirmed', unconfirmed: 'never confirmed (no longer sent)', withheld: 'not sent (PX4 before 1.15)' }[v.origin.state] || v.origin.state;
   origin.className = `v-origin ${v.origin.state}`;

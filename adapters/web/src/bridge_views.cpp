@@ -159,6 +159,9 @@ void fill_setup(const core::VehicleStatus& in, core::HostTime now, VehicleView& 
   }
   v.setup.reboot_for = setup.reboot_for;
   v.setup.last_refusal = setup.last_refusal;
+  if (setup.state == core::SetupState::unavailable) {
+    v.setup.note = std::string(core::unavailable_reason(in.link));
+  }
   for (const core::StatusText& t : setup.statustext) {
     v.statustext.push_back(StatusTextView{std::string(core::severity_name(t.severity)), t.text,
                                           std::max(0.0, seconds_between(t.time, now))});
@@ -271,7 +274,10 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     for (const core::MessageDescriptor& row : core::kMessages) {
       const std::string name(row.name);
       const auto k = static_cast<std::size_t>(row.kind);
-      v.available_messages.push_back(name);
+      // Over uXRCE-DDS only ODOMETRY becomes a pose (VehicleOdometry): nothing else to offer.
+      if (in.link == core::VehicleLink::mavlink || row.kind == core::MessageKind::odometry) {
+        v.available_messages.push_back(name);
+      }
       if (sender.messages.contains(row.kind)) v.messages.push_back(name);
       if (sender.counters.sent[k] > 0)
         v.sent[std::string(row.mavlink_name)] = sender.counters.sent[k];
@@ -311,23 +317,37 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
           flight_mode_name(hb.autopilot, hb.type, hb.custom_mode),
           state.last_heartbeat ? std::max(0.0, seconds_between(*state.last_heartbeat, now)) : 0.0};
     }
-    if (state.timesync) {
-      v.timesync =
-          TimesyncView{TimesyncState::synced, static_cast<double>(state.timesync->offset_ns) / 1e6,
-                       static_cast<double>(state.timesync->rtt_ns) / 1e6};
+    if (in.link != core::VehicleLink::mavlink) {
+      // Over uXRCE-DDS PX4 syncs with the Agent, not with us: nothing of ours to show.
+      v.timesync.state = TimesyncState::off;
+      v.clock = ClockView{std::nullopt,
+                          std::nullopt,
+                          std::nullopt,
+                          "capture",
+                          0,
+                          0,
+                          "not measured: no TIMESYNC goes over uXRCE-DDS; PX4 converts the poses' "
+                          "capture times with its own time sync to the Agent host's clock, never "
+                          "into its future"};
     } else {
-      v.timesync.state = TimesyncState::waiting;
+      if (state.timesync) {
+        v.timesync = TimesyncView{TimesyncState::synced,
+                                  static_cast<double>(state.timesync->offset_ns) / 1e6,
+                                  static_cast<double>(state.timesync->rtt_ns) / 1e6};
+      } else {
+        v.timesync.state = TimesyncState::waiting;
+      }
+      v.clock.verdict = state.clock.verdict;
+      v.clock.rate_ppm = state.clock.rate_ppm;
+      v.clock.residual_ms = state.clock.residual_ms;
+      if (state.heartbeat && state.heartbeat->autopilot == core::kMavAutopilotPx4) {
+        v.clock.pose_stamps = state.capture_stamps ? "capture" : "arrival";
+      }
+      v.clock.withheld = state.counters.timesync_withheld;
+      v.clock.reset_answers = state.counters.timesync_resets;
+      v.clock.text = core::vehicle_clock_text(
+          state.clock, state.heartbeat ? state.heartbeat->autopilot : std::uint8_t{0});
     }
-    v.clock.verdict = state.clock.verdict;
-    v.clock.rate_ppm = state.clock.rate_ppm;
-    v.clock.residual_ms = state.clock.residual_ms;
-    if (state.heartbeat && state.heartbeat->autopilot == core::kMavAutopilotPx4) {
-      v.clock.pose_stamps = state.capture_stamps ? "capture" : "arrival";
-    }
-    v.clock.withheld = state.counters.timesync_withheld;
-    v.clock.reset_answers = state.counters.timesync_resets;
-    v.clock.text = core::vehicle_clock_text(
-        state.clock, state.heartbeat ? state.heartbeat->autopilot : std::uint8_t{0});
     v.origin = state.origin;
     v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
                                 state.agreement.position_offset_m,

@@ -162,6 +162,16 @@ ConfigResult update_vehicle(const Config& base, std::string_view name,
       diagnostics.error(where, changes.messages.key, detail::kGpsNeedsOrigin);
     }
   }
+  // Over uXRCE-DDS the poses are VehicleOdometry, made from ODOMETRY alone (px4_link.hpp).
+  if (const auto& messages = changes.messages.value;
+      messages && target->link.value && target->link.value->kind == LinkKind::ros2 &&
+      !(core::MessageSet(*messages) == core::MessageSet{} ||
+        core::MessageSet(*messages) == core::MessageSet{core::MessageKind::odometry})) {
+    diagnostics.error(where, changes.messages.key,
+                      "link " + to_string(*target->link.value) +
+                          " carries the poses as PX4's VehicleOdometry, made from odometry only: "
+                          "messages = [\"odometry\"] (or [] to send none)");
+  }
   changes.messages = {};  // not the configured list of a custom profile: the Bridge holds it
   detail::merge(*target, changes);
   return finish(draft, diagnostics, origin);

@@ -235,6 +235,8 @@ std::optional<Vehicle> finalize_vehicle(const VehicleDraft& v, const ConfigDraft
   out.name = *v.name.value;
   out.body = *v.body.value;
   vehicle.link = *v.link.value;
+  out.link =
+      vehicle.link.kind == LinkKind::ros2 ? core::VehicleLink::px4_dds : core::VehicleLink::mavlink;
   vehicle.gcs = value_or(v.gcs, std::vector<LinkUrl>{});
   out.system_id = *v.system_id.value;
   // Keys not given keep the core's defaults (component 197, the vision component of

@@ -17,8 +17,12 @@ std::string vehicle_field(std::size_t slot, std::string_view key) {
   return "vehicle[" + std::to_string(slot + 1) + "]." + std::string(key);
 }
 
-/// Where the vehicle's yaw and position come from, by the parameters its set-up list has read.
-EstimateSources sources_of(const VehicleSetup& setup) {
+/// Where the vehicle's yaw and position come from, by the parameters its set-up list has read
+/// (over uXRCE-DDS, where none can be read: px4_dds_sources).
+EstimateSources sources_of(const VehicleSetup& setup, VehicleLink link) {
+  // Only the px4 profile reaches such a link (config: check_ros2_link), so it is PX4 from the
+  // first status, before the set-up has learnt the autopilot.
+  if (link == VehicleLink::px4_dds) return px4_dds_sources();
   return estimate_sources(setup.autopilot(), setup.version(), setup.input(),
                           [&setup](std::string_view name) { return setup.parameter(name); });
 }
@@ -180,7 +184,7 @@ void Bridge::place_vehicle(const VehicleSpec& spec, std::size_t slot) {
   vc.agreement = config_.agreement;
   const auto body = static_cast<std::size_t>(it - bodies_.begin());
   const VehicleStreams streams(spec.system_id, spec.component_id);
-  VehicleSetup setup(spec.system_id, spec.component_id, spec.profile, sc.messages);
+  VehicleSetup setup(spec.system_id, spec.component_id, spec.profile, sc.messages, spec.link);
   Vehicle vehicle{spec, body, Sender(sc), VehicleState(vc), origin, streams, std::move(setup), 0};
   if (slot == vehicles_.size()) {
     vehicles_.emplace_back(std::move(vehicle));
@@ -500,7 +504,8 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
   if (found == nullptr) return out;
   Vehicle& v = *found;
   const BodyEstimate& mocap = bodies_[v.body].published;
-  const VehicleReaction sources = v.state.set_estimate_sources(sources_of(v.setup), received);
+  const VehicleReaction sources =
+      v.state.set_estimate_sources(sources_of(v.setup, v.spec.link), received);
   if (sources.agreement_changed) {
     name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, mocap, v.state);
   }
@@ -550,7 +555,11 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     const GeodeticPosition* origin =
         v.sends_origin && v.state.wants_origin() && gate == OriginGate::send ? &*config_.origin
                                                                              : nullptr;
-    v.sender.on_tick(now, signing_now_10us(now), origin, config_.timesync_requests, out.messages);
+    // Over uXRCE-DDS only poses go: the link could carry nothing else (VehicleLink::px4_dds).
+    const bool mavlink = v.spec.link == VehicleLink::mavlink;
+    if (mavlink) {
+      v.sender.on_tick(now, signing_now_10us(now), origin, config_.timesync_requests, out.messages);
+    }
     for (std::size_t k = first; k < out.messages.size(); ++k) {
       const auto* ts = std::get_if<mavlink::Timesync>(&out.messages[k].message);
       if (ts != nullptr && ts->tc1 == 0) v.state.on_timesync_request_sent(ts->ts1);
@@ -566,7 +575,7 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     }
     std::vector<mavlink::Message> requests;
     std::vector<std::string> notes;
-    v.streams.on_tick(now, target, requests, notes);
+    if (mavlink) v.streams.on_tick(now, target, requests, notes);
     stream_events(i, notes, now, out);
     // After a reboot (VehicleStreams sees its boot clock go back) the set-up list is read again
     // and the origin, lost with the vehicle's estimator, is sent again: without it ArduPilot
@@ -586,9 +595,12 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     setup_target.autopilot = target.autopilot;
     setup_target.compid = target.compid;
     setup_target.armed = heard.heartbeat && heard.heartbeat->armed;
-    v.setup.on_tick(now, setup_target, delay_inputs(capture_age_ms, heard), requests, notes);
+    DelayInputs delay = delay_inputs(capture_age_ms, heard);
+    delay.dds_time_sync = !mavlink;
+    v.setup.on_tick(now, setup_target, delay, requests, notes);
     stream_events(i, notes, now, out, BridgeEventKind::vehicle_setup);
-    const VehicleReaction sources = v.state.set_estimate_sources(sources_of(v.setup), now);
+    const VehicleReaction sources =
+        v.state.set_estimate_sources(sources_of(v.setup, v.spec.link), now);
     if (sources.agreement_changed) {
       name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, bodies_[v.body].published,
                     v.state);
@@ -664,7 +676,7 @@ BridgeSnapshot Bridge::snapshot(HostTime now) const {
   for (std::size_t i = 0; i < vehicles_.size(); ++i) {
     if (!vehicles_[i]) continue;
     const Vehicle& v = *vehicles_[i];
-    s.vehicles.push_back({i, v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled,
+    s.vehicles.push_back({i, v.spec.name, v.spec.body, v.spec.profile, v.spec.enabled, v.spec.link,
                           v.sender.snapshot(now), v.state.snapshot(), v.streams.snapshot(),
                           v.setup.snapshot()});
   }

@@ -97,6 +97,13 @@ EstimateSources estimate_sources(AutopilotFamily autopilot,
   return {};
 }
 
+EstimateSources px4_dds_sources() {
+  const QuantitySource assumed{EstimateSource::mocap,
+                               "assumed: PX4 fuses the poses it is sent over uXRCE-DDS, and "
+                               "EKF2_EV_CTRL cannot be read there"};
+  return {assumed, assumed};
+}
+
 std::optional<std::string> describe_unchecked(std::string_view what, const QuantitySource& source) {
   const std::string name(what);
   switch (source.source) {

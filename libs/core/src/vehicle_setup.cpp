@@ -109,8 +109,21 @@ std::string_view to_string(SetupState state) {
       return "no answer";
     case SetupState::unsupported:
       return "unsupported";
+    case SetupState::unavailable:
+      return "unavailable";
   }
   return "waiting";
+}
+
+std::string_view unavailable_reason(VehicleLink link) {
+  switch (link) {
+    case VehicleLink::mavlink:
+      return "";
+    case VehicleLink::px4_dds:
+      return "PX4's parameters do not go over uXRCE-DDS: check this list over a MAVLink link to "
+             "the same PX4 (mocaplink vehicle setup, or QGroundControl)";
+  }
+  return "";
 }
 
 std::string_view to_string(ApplyState state) {
@@ -161,8 +174,12 @@ EstimatorHealth describe_estimator_status(std::uint16_t flags) {
 }
 
 VehicleSetup::VehicleSetup(std::uint8_t system_id, std::uint8_t component_id, Profile profile,
-                           MessageSet messages)
-    : system_id_(system_id), component_id_(component_id), profile_(profile), messages_(messages) {}
+                           MessageSet messages, VehicleLink link)
+    : system_id_(system_id),
+      component_id_(component_id),
+      profile_(profile),
+      messages_(messages),
+      link_(link) {}
 
 void VehicleSetup::restart(HostTime now) {
   version_.reset();
@@ -411,6 +428,16 @@ void VehicleSetup::on_tick(HostTime now, const SetupTarget& target, const DelayI
     update_state(notes);
     return;
   }
+  if (link_ != VehicleLink::mavlink) {
+    // Nothing can be asked: the newest firmware's rules, every item unread.
+    if (!version_done_) {
+      version_done_ = true;
+      choose_rules();
+    }
+    state_ = SetupState::unavailable;
+    update_state(notes);
+    return;
+  }
   if (!version_done_) {
     if (next_send_ && now < *next_send_) return;
     if (version_attempts_ >= kVersionAttempts) {
@@ -509,7 +536,7 @@ void VehicleSetup::tick_writes(HostTime now, std::vector<mavlink::Message>& out,
 }
 
 void VehicleSetup::update_state(std::vector<std::string>& notes) {
-  if (state_ != SetupState::unsupported) {
+  if (state_ != SetupState::unsupported && state_ != SetupState::unavailable) {
     const bool pending = std::any_of(params_.begin(), params_.end(),
                                      [](const Param& p) { return !p.value && !p.gave_up; });
     const bool any_value =
@@ -535,6 +562,8 @@ void VehicleSetup::update_state(std::vector<std::string>& notes) {
   std::string text = "set-up " + std::string(to_string(state_));
   if (state_ == SetupState::unsupported) {
     text += ": no set-up rules for this autopilot (only PX4 and ArduPilot)";
+  } else if (state_ == SetupState::unavailable) {
+    text += ": " + std::string(unavailable_reason(link_));
   } else if (state_ == SetupState::no_answer) {
     text += ": the vehicle answered none of " + std::to_string(params_.size()) +
             " parameter reads (does this link carry the parameter protocol?)";
@@ -569,6 +598,9 @@ std::optional<double> VehicleSetup::recommended_delay() const {
       delay_.vehicle_timesync && delay_.link_rtt_ms && *delay_.link_rtt_ms < kPx4TimesyncMaxRttMs) {
     return 0.0;
   }
+  // Over uXRCE-DDS PX4's client converts timestamp_sample from the Agent host's clock, clamped to
+  // "not in the future" (§4 of ros2-dds.md): the capture time is kept however long delivery took.
+  if (family_ == AutopilotFamily::px4 && delay_.dds_time_sync) return 0.0;
   return measured;
 }
 
@@ -598,6 +630,7 @@ SetupRequestResult VehicleSetup::apply(std::span<const std::string> parameters, 
     last_refusal_ = why;
     return SetupRequestResult{false, std::move(why)};
   };
+  if (link_ != VehicleLink::mavlink) return refuse(std::string(unavailable_reason(link_)));
   if (target_.armed) return refuse("the vehicle is armed: nothing is written to an armed vehicle");
   if (state_ != SetupState::ready && state_ != SetupState::blocked) {
     return refuse("the list is not complete (set-up " + std::string(to_string(state_)) +
@@ -641,6 +674,10 @@ SetupRequestResult VehicleSetup::apply(std::span<const std::string> parameters, 
 
 SetupRequestResult VehicleSetup::reboot(HostTime now, std::vector<mavlink::Message>& out) {
   (void)now;
+  if (link_ != VehicleLink::mavlink) {
+    last_refusal_ = "PX4 is not rebooted over uXRCE-DDS: restart it over a MAVLink link or by hand";
+    return {false, last_refusal_};
+  }
   if (!target_.alive) {
     last_refusal_ = "no heartbeat from the vehicle";
     return {false, last_refusal_};
@@ -691,8 +728,13 @@ VehicleSetupSnapshot VehicleSetup::snapshot() const {
           "capture to mocaplink (median) " + format_value(*delay_.capture_age_ms) + " ms" +
           (delay_.link_rtt_ms
                ? " + half the link round trip " + format_value(*delay_.link_rtt_ms / 2) + " ms"
-               : std::string(" (link round trip not measured yet)"));
-      if (family_ == AutopilotFamily::px4 && s.delay.recommended_ms == 0.0) {
+           : delay_.dds_time_sync ? std::string()
+                                  : std::string(" (link round trip not measured yet)"));
+      if (delay_.dds_time_sync && s.delay.recommended_ms == 0.0) {
+        s.delay.basis +=
+            "; PX4 translates the capture time with its uXRCE-DDS time sync, so 0 is right while "
+            "mocaplink runs on the Agent's host (or both hosts keep NTP time)";
+      } else if (family_ == AutopilotFamily::px4 && s.delay.recommended_ms == 0.0) {
         s.delay.basis += "; PX4 translates the capture time with TIMESYNC, so 0 is right";
       }
     }

@@ -163,6 +163,26 @@ TEST(Ros2Config, Px4LinksNeedTheTableAndThePx4Profile) {
               ElementsAre(testing::HasSubstr("each PX4 needs its own namespace")));
 }
 
+// The dashboard's message boxes on such a vehicle: only odometry becomes a VehicleOdometry, so
+// any other set would stop its poses; an empty one sends none, as on every link.
+TEST(Ros2Config, ALiveChangeKeepsOdometryOnly) {
+  const auto base = parse(
+      "[ros2]\npublish = []\n[[vehicle]]\nname = \"q1\"\nbody = \"Quad1\"\n"
+      "link = \"ros2://px4_1\"\nsystem_id = 2\nprofile = \"px4\"\n");
+  ASSERT_TRUE(base.ok()) << testing::PrintToString(error_lines(base));
+  EXPECT_EQ(base.config->vehicles.at(0).spec.link, core::VehicleLink::px4_dds);
+  const auto patch = [&](std::vector<std::string> messages) {
+    return update_vehicle(*base.config, "q1", {{"messages", std::move(messages)}},
+                          "PATCH /api/vehicles/q1");
+  };
+  EXPECT_TRUE(patch({"odometry"}).ok());
+  EXPECT_TRUE(patch({}).ok());
+  EXPECT_THAT(
+      error_lines(patch({"vision_position_estimate"})),
+      ElementsAre(testing::HasSubstr("made from odometry only: messages = [\"odometry\"]")));
+  EXPECT_FALSE(patch({"odometry", "hil_gps"}).ok());
+}
+
 TEST(Ros2Config, BodiesThatCannotBePublished) {
   EXPECT_THAT(
       error_lines(parse("[ros2]\nbodies = [\"Quad 1\", \"Quad-1\"]\n")),

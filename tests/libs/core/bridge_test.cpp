@@ -477,6 +477,23 @@ TEST(BridgeVehicles, HeartbeatStateAndAgreementEvents) {
 /// (EK3_SRC1_YAW = 6, EK3_SRC1_POSXY = 6, every other parameter 0) and that reports, level on
 /// its IMU, the yaw and position mocaplink sends it. Returns the agreement after 12 s and the
 /// agreement events' texts.
+/// Vehicle 0 reports mocaplink's own pose of body 0 back as its estimate (ATTITUDE yaw and
+/// LOCAL_POSITION_NED stamped `boot`), as a vehicle fusing our poses does; `keep` sees each output.
+template <typename Keep>
+void echo_estimate(Bridge& bridge, HostTime now, std::uint32_t boot, const Keep& keep) {
+  const BodyEstimate& sent = bridge.snapshot(now).bodies[0].estimate;
+  mavlink::Attitude att;
+  att.time_boot_ms = boot;
+  att.yaw = static_cast<float>(euler_321_from_quaternion(sent.q_ned_frd).yaw_rad);
+  mavlink::LocalPositionNed pos;
+  pos.time_boot_ms = boot;
+  pos.x = static_cast<float>(sent.p_ned_m.x());
+  pos.y = static_cast<float>(sent.p_ned_m.y());
+  pos.z = static_cast<float>(sent.p_ned_m.z());
+  keep(bridge.on_vehicle_message(0, {1, 1, att}, now));
+  keep(bridge.on_vehicle_message(0, {1, 1, pos}, now));
+}
+
 std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_view up) {
   BridgeConfig c = two_vehicles();
   c.world = *WorldAxisMapping::parse(up, "+x");
@@ -511,18 +528,7 @@ std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_vie
       }
     }
     if (n % 20 != 0) continue;  // its estimate at 5 Hz: mocaplink's own pose, fed back
-    const BodyEstimate& sent = bridge.snapshot(now).bodies[0].estimate;
-    const auto boot = static_cast<std::uint32_t>(60'000 + 10 * n);
-    mavlink::Attitude att;
-    att.time_boot_ms = boot;
-    att.yaw = static_cast<float>(euler_321_from_quaternion(sent.q_ned_frd).yaw_rad);
-    mavlink::LocalPositionNed pos;
-    pos.time_boot_ms = boot;
-    pos.x = static_cast<float>(sent.p_ned_m.x());
-    pos.y = static_cast<float>(sent.p_ned_m.y());
-    pos.z = static_cast<float>(sent.p_ned_m.z());
-    keep(bridge.on_vehicle_message(0, {1, 1, att}, now));
-    keep(bridge.on_vehicle_message(0, {1, 1, pos}, now));
+    echo_estimate(bridge, now, static_cast<std::uint32_t>(60'000 + 10 * n), keep);
   }
   return {bridge.snapshot(received_at(1200)).vehicles[0].vehicle.agreement, events};
 }
@@ -559,6 +565,63 @@ TEST(BridgeVehicles, TheRightAxesWithExternalNavAgreeOnGravityAlone) {
   EXPECT_EQ(last.rfind("estimate agrees, tilt offset 0.", 0), 0U) << last;
   ASSERT_GE(last.size(), tail.size());
   EXPECT_EQ(last.substr(last.size() - tail.size()), tail) << last;
+}
+
+// A PX4 over uXRCE-DDS (issue 47): its link carries the poses and nothing else, so the Bridge
+// sends it no HEARTBEAT, TIMESYNC, origin, stream or parameter request; the set-up list is
+// unavailable, and its estimate (as the link turns vehicle_odometry into ATTITUDE and
+// LOCAL_POSITION_NED, stamped from when it was first heard) agrees on gravity, yaw and position
+// assumed to be mocap's own.
+TEST(BridgeVehicles, APx4OverDdsIsSentOnlyPosesAndAgreesOnGravity) {
+  BridgeConfig c = two_vehicles();
+  c.timesync_requests = true;
+  c.vehicles = {vehicle("quad", "Quad", Profile::px4, 1)};
+  c.vehicles[0].link = VehicleLink::px4_dds;
+  Bridge bridge = make_bridge(c);
+  mavlink::Heartbeat hb;  // what px4_link.cpp makes of vehicle_status
+  hb.autopilot = kMavAutopilotPx4;
+  hb.base_mode = kMavModeFlagSafetyArmed;
+  std::size_t odometry = 0;
+  std::vector<std::string> setup_events;
+  const auto keep = [&](const BridgeOutput& out) {
+    for (const auto& m : out.messages) {
+      if (std::holds_alternative<mavlink::Odometry>(m.message)) {
+        ++odometry;
+      } else {
+        ADD_FAILURE() << "sent " << mavlink::message_info(m.message).name << " over DDS";
+      }
+    }
+    for (const BridgeEvent& e : out.events) {
+      if (e.kind == BridgeEventKind::vehicle_setup) setup_events.push_back(e.text);
+    }
+  };
+  for (std::uint64_t n = 1; n <= 2000; ++n) {  // 20 s of 100 Hz frames
+    const HostTime now = received_at(n);
+    keep(bridge.on_frame(frame_at(n, true, false), now));
+    if (n % 10 != 0) continue;
+    if (n % 50 == 0) keep(bridge.on_vehicle_message(0, {1, 1, hb}, now));
+    keep(bridge.on_tick(now));
+    if (n % 20 != 0) continue;
+    echo_estimate(bridge, now, static_cast<std::uint32_t>(10 * n), keep);  // heard from the start
+  }
+  EXPECT_GT(odometry, 900U);  // 50 Hz
+  const VehicleStatus status = bridge.snapshot(received_at(2000)).vehicles[0];
+  EXPECT_EQ(status.link, VehicleLink::px4_dds);
+  EXPECT_EQ(status.setup.state, SetupState::unavailable);
+  EXPECT_EQ(status.sender.counters.heartbeats, 0U);
+  EXPECT_EQ(status.sender.counters.timesync_requests, 0U);
+  EXPECT_EQ(status.setup.delay.recommended_ms, 0.0);
+  ASSERT_EQ(setup_events.size(), 1U);
+  EXPECT_EQ(setup_events[0].rfind("set-up unavailable: PX4's parameters do not go over", 0), 0U)
+      << setup_events[0];
+  const Agreement& agreement = status.vehicle.agreement;
+  EXPECT_EQ(agreement.verdict, AgreementVerdict::agree);
+  EXPECT_EQ(agreement.sources, px4_dds_sources());
+  const auto unchecked = describe_unchecked(agreement.sources);
+  ASSERT_TRUE(unchecked);
+  EXPECT_EQ(unchecked->rfind("yaw not checkable: the vehicle's yaw comes from mocap (assumed: ", 0),
+            0U)
+      << *unchecked;
 }
 
 TEST(BridgeVehicles, ReadsTheSetUpAsTheVehicleAndAppliesOnlyOnRequest) {

@@ -501,5 +501,46 @@ TEST(VehicleSetup, ComingBackAfterSilenceReadsAgain) {
   EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 2 * first);
 }
 
+// PX4 over uXRCE-DDS (issue 47): the link carries no parameters. Nothing is asked or written;
+// the list is the newest firmware's, every item unread, and the state says why.
+TEST(VehicleSetup, OverDdsNothingIsAskedAndTheListIsUnavailable) {
+  Harness h;
+  px4_defaults(h.vehicle);
+  h.setup = VehicleSetup(kSysid, kOurCompid, Profile::px4, MessageSet{MessageKind::odometry},
+                         VehicleLink::px4_dds);
+  h.delay.capture_age_ms = 3.0;
+  h.delay.dds_time_sync = true;
+  h.run(30000);
+  EXPECT_TRUE(h.sent.empty());
+  const auto snap = h.setup.snapshot();
+  EXPECT_EQ(snap.state, SetupState::unavailable);
+  EXPECT_EQ(to_string(snap.state), "unavailable");
+  ASSERT_FALSE(snap.lines.empty());
+  for (const SetupLine& l : snap.lines) {
+    EXPECT_EQ(l.item.status, SetupStatus::unread) << l.item.parameter;
+  }
+  ASSERT_NE(h.line("EKF2_EV_CTRL"), nullptr);  // 1.14's names: the newest rules
+  // PX4's client converts timestamp_sample itself: 0, said with its condition.
+  EXPECT_EQ(snap.delay.recommended_ms, 0.0);
+  EXPECT_NE(snap.delay.basis.find("uXRCE-DDS time sync"), std::string::npos) << snap.delay.basis;
+  EXPECT_EQ(snap.delay.basis.find("not measured yet"), std::string::npos) << snap.delay.basis;
+  // Logged once, with where to check it instead.
+  EXPECT_EQ(
+      std::count_if(h.notes.begin(), h.notes.end(),
+                    [](const std::string& n) { return n.rfind("set-up unavailable", 0) == 0; }),
+      1);
+  EXPECT_NE(std::string(unavailable_reason(VehicleLink::px4_dds)).find("MAVLink link"),
+            std::string::npos);
+  EXPECT_EQ(unavailable_reason(VehicleLink::mavlink), "");
+  // Apply and reboot are refused, and nothing goes out for them.
+  const std::vector<std::string> names{"EKF2_EV_CTRL"};
+  EXPECT_FALSE(h.setup.apply(names, at_ms(h.now_ms)).accepted);
+  std::vector<mavlink::Message> out;
+  const SetupRequestResult reboot = h.setup.reboot(at_ms(h.now_ms), out);
+  EXPECT_FALSE(reboot.accepted);
+  EXPECT_NE(reboot.message.find("uXRCE-DDS"), std::string::npos);
+  EXPECT_TRUE(out.empty());
+}
+
 }  // namespace
 }  // namespace mocaplink::core

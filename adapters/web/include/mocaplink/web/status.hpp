@@ -120,7 +120,8 @@ struct TimesyncView {
 /// The vehicle's clock against the host's (core::VehicleClockMonitor) and what PX4 does with our
 /// poses' time stamps because of it.
 struct ClockView {
-  core::VehicleClockVerdict verdict = core::VehicleClockVerdict::measuring;
+  /// nullopt: not measured on this link (PX4 over uXRCE-DDS carries no TIMESYNC).
+  std::optional<core::VehicleClockVerdict> verdict = core::VehicleClockVerdict::measuring;
   std::optional<double> rate_ppm{};     ///< vehicle rate − host rate, ppm
   std::optional<double> residual_ms{};  ///< largest window minimum off the fitted line
   /// PX4 only: "capture" (its time sync converts our capture times) or "arrival" (it stamps
@@ -177,11 +178,12 @@ struct SetupItemView {
 };
 
 struct SetupView {
-  /// waiting | identifying | reading | ready | blocked | no answer | unsupported
+  /// waiting | identifying | reading | ready | blocked | no answer | unsupported | unavailable
   std::string state = "waiting";
   std::vector<SetupItemView> items{};
   std::vector<std::string> reboot_for{};  ///< confirmed changes waiting for a reboot
   std::string last_refusal{};
+  std::string note{};  ///< why the list cannot be read on this link ("" if it can)
 };
 
 struct StatusTextView {

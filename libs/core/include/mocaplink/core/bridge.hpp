@@ -92,6 +92,9 @@ struct VehicleSpec {
   std::optional<std::array<std::uint8_t, 32>> signing_key;
   BodyAxisMapping body_axes = default_body_axes();  ///< rigid-body axes → FRD
   bool enabled = true;                              ///< false: tracked and shown, nothing sent
+  /// What the link carries. px4_dds: the poses only, and nothing else is sent (no HEARTBEAT,
+  /// TIMESYNC, origin, stream or parameter requests); the set-up list is unavailable.
+  VehicleLink link = VehicleLink::mavlink;
 };
 
 /// Bodies tracked for publication beside the vehicles' bodies (the [ros2] topics, docs/ros2.md).
@@ -186,6 +189,7 @@ struct VehicleStatus {
   std::string body;
   Profile profile = Profile::px4;
   bool enabled = true;
+  VehicleLink link = VehicleLink::mavlink;
   SenderSnapshot sender;
   VehicleSnapshot vehicle;
   VehicleStreamsSnapshot streams;  ///< ATTITUDE / LOCAL_POSITION_NED requests (agreement check)

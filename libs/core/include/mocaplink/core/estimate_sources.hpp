@@ -60,6 +60,11 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
                                                const std::optional<FirmwareVersion>& version,
                                                SetupInput input, const ParameterLookup& parameter);
 
+/// A PX4 fed over uXRCE-DDS (VehicleLink::px4_dds): its parameters cannot be read there, and
+/// its vision topic exists to be fused, so both are taken to come from mocap — they can still
+/// disagree, never agree (the basis says it is assumed).
+[[nodiscard]] EstimateSources px4_dds_sources();
+
 /// "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6)",
 /// "yaw not checkable yet: EK3_SRC1_YAW not read from the vehicle", or nullopt when the
 /// vehicle's yaw is independent. `what` is "yaw" or "position".

@@ -18,6 +18,9 @@
 //   no_answer    not one parameter answered: the link carries no parameter protocol (a router
 //                that filters it, a port without MAVLink, a vehicle busy booting).
 //   unsupported  not PX4 or ArduPilot: there are no rules.
+//   unavailable  the vehicle's link carries no parameters (VehicleLink::px4_dds, PX4 over
+//                uXRCE-DDS): nothing is asked or written; the list shows the rules of the newest
+//                firmware as `unread`, to be checked over a MAVLink link (unavailable_reason()).
 // Any PARAM_VALUE for a parameter of the list updates it at any time (a ground station that
 // changes it makes the vehicle announce the new value), and so does the answer to our own write.
 // A vehicle that goes silent and comes back, or reboots (the caller says so), is read again.
@@ -69,14 +72,29 @@ enum class SetupState : std::uint8_t {
   ready,
   blocked,
   no_answer,
-  unsupported
+  unsupported,
+  unavailable
 };
-/// "waiting", "identifying", "reading", "ready", "blocked", "no answer", "unsupported".
+/// "waiting", "identifying", "reading", "ready", "blocked", "no answer", "unsupported",
+/// "unavailable".
 [[nodiscard]] std::string_view to_string(SetupState state);
 
 enum class ApplyState : std::uint8_t { none, pending, confirmed, failed };
 /// "none", "pending", "confirmed", "failed".
 [[nodiscard]] std::string_view to_string(ApplyState state);
+
+/// What a vehicle's link carries (docs/ros2.md "PX4 over uXRCE-DDS").
+enum class VehicleLink : std::uint8_t {
+  mavlink,  ///< MAVLink both ways: every request, answer and command
+  /// PX4's uXRCE-DDS topics through the Agent (adapters/ros2 px4_link.hpp): the poses out;
+  /// in, its status (as HEARTBEAT) and its estimate (as ATTITUDE, LOCAL_POSITION_NED). No
+  /// parameters, commands, TIMESYNC, origin or heartbeat of ours: the Bridge sends it none.
+  px4_dds,
+};
+
+/// Why the set-up list of a vehicle on `link` cannot be read ("" for a MAVLink link): the sentence
+/// of the log, `setup.note` and `vehicle setup`.
+[[nodiscard]] std::string_view unavailable_reason(VehicleLink link);
 
 /// One line of the list with what Apply did to it.
 struct SetupLine {
@@ -123,6 +141,9 @@ struct DelayInputs {
   std::optional<double> capture_age_ms;
   std::optional<double> link_rtt_ms;
   bool vehicle_timesync = false;  ///< the vehicle sends TIMESYNC requests (we answer them)
+  /// PX4 over uXRCE-DDS: it converts the capture time with its own time sync to the Agent
+  /// host's clock (protocols/ros2-dds.md §4).
+  bool dds_time_sync = false;
 };
 
 /// The vehicle as the heartbeat describes it, given on every tick.
@@ -170,7 +191,7 @@ class VehicleSetup {
   /// `system_id`: the vehicle's; `component_id`: ours. `profile`, `messages`: what is sent to
   /// the vehicle (they decide the rules with its autopilot).
   VehicleSetup(std::uint8_t system_id, std::uint8_t component_id, Profile profile,
-               MessageSet messages);
+               MessageSet messages, VehicleLink link = VehicleLink::mavlink);
 
   /// A message from the vehicle's link that arrived at `now`; appends log lines to `notes`.
   void on_message(const ReceivedMessage& message, HostTime now, std::vector<std::string>& notes);
@@ -237,6 +258,7 @@ class VehicleSetup {
   std::uint8_t component_id_;
   Profile profile_;
   MessageSet messages_;
+  VehicleLink link_;
   SetupTarget target_{};
   SetupState state_ = SetupState::waiting;
   AutopilotFamily family_ = AutopilotFamily::unknown;
