@@ -89,6 +89,29 @@ void print_text(const nlohmann::json& v) {
     std::printf("  delay: %s recommended %s ms (%s)\n", text(delay, "parameter").c_str(),
                 number(delay, "recommended").c_str(), text(delay, "basis").c_str());
   }
+  // The pre-flight check where it has a verdict (mocap is known only to `run`: through its
+  // dashboard), with the config lines that make mocap agree with the vehicle at rest.
+  const nlohmann::json& agreement = v.at("agreement");
+  const std::string verdict = text(agreement, "verdict");
+  if (verdict == "agree" || verdict == "disagree") {
+    const auto fixed = [&](const char* key, int digits) {
+      if (!agreement.contains(key) || !agreement.at(key).is_number()) return std::string("-");
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.*f", digits, agreement.at(key).get<double>());
+      return std::string(buffer);
+    };
+    std::printf("  agreement: %s (tilt %s deg, yaw %s deg, position %s m)\n", verdict.c_str(),
+                fixed("tilt_offset_deg", 1).c_str(), fixed("yaw_offset_deg", 1).c_str(),
+                fixed("position_offset_m", 3).c_str());
+    const nlohmann::json& fix = agreement.at("fix");
+    if (fix.is_object()) {
+      for (const auto& line : fix.at("lines"))
+        std::printf("    fix: %s\n", line.get<std::string>().c_str());
+    }
+    if (!text(agreement, "reason").empty()) {
+      std::printf("            %s\n", text(agreement, "reason").c_str());
+    }
+  }
   const nlohmann::json& estimator = v.at("estimator");
   if (estimator.is_object() && !estimator.at("problems").empty()) {
     std::string problems;

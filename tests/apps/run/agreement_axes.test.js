@@ -10,6 +10,7 @@
 //           and the log line; poses keep flowing.
 'use strict';
 
+const fs = require('node:fs');
 const path = require('node:path');
 const { MavLinkProtocolV2, common, minimal } = require('node-mavlink');
 const h = require('./harness');
@@ -88,6 +89,9 @@ async function session(dir, up) {
     'sim://?bodies=1&rate_hz=100', [{ name: 'quad', body: 'Body1',
       link: `udp://127.0.0.1:${link.port}`, system_id: 1, profile: 'ardupilot', rate_hz: 30 }],
     `up = "${up}"`);
+  // A fixed dashboard port: `vehicle setup` with this configuration asks the running daemon.
+  const httpPort = await h.freeTcpPort();
+  fs.writeFileSync(config, fs.readFileSync(config, 'utf8').replace('127.0.0.1:0', `127.0.0.1:${httpPort}`));
   const run = h.mocaplink(['run', '--config', config]);
   const [, port] = await h.waitForLog(run, /dashboard: http:\/\/127\.0\.0\.1:(\d+)\//);
   const api = h.dashboardApi(port);
@@ -118,7 +122,7 @@ async function session(dir, up) {
     }
     assert.fail(`no ${want} in ${ms} ms: ${JSON.stringify(q.agreement)}\n${run.stderr}`);
   };
-  return { run, api, verdict, done };
+  return { run, api, verdict, done, config };
 }
 
 const NOT_CHECKABLE = "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); "
@@ -147,6 +151,12 @@ async function main() {
     const alerts = (await mistake.api('GET', '/api/status')).json.alerts;
     assert.ok(alerts.some((x) => x.kind === 'agreement_failing' && x.subject === 'quad'), JSON.stringify(alerts));
     await h.waitForLog(mistake.run, /agreement quad: estimate disagrees, tilt offset [0-9.]+ deg.*; fix: \[mocap\] up = "\+z"/, 5000);
+    // `vehicle setup` names the same fix, through the running daemon.
+    const setup = h.mocaplink(['vehicle', 'setup', '--config', mistake.config, 'quad', '--timeout', '20']);
+    await setup.exited;
+    assert.match(setup.stdout, /^ {2}agreement: disagree \(tilt [0-9.]+ deg, yaw -?[0-9.e-]+ deg, position [0-9.e-]+ m\)\n {4}fix: \[mocap\] up = "\+z"\n/m,
+      `${setup.stdout}\n${setup.stderr}`);
+    console.log(setup.stdout.split('\n').filter((l) => /agreement:|fix:/.test(l)).join('\n'));
     // It refuses nothing new: poses keep flowing.
     const sent = bad.sent.ODOMETRY;
     await h.sleep(500);
