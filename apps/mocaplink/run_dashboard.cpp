@@ -81,6 +81,7 @@ class RunDashboard::Backend final : public web::DashboardBackend {
     context_.links_down.clear();
     context_.gcs.clear();
     context_.link_share.clear();
+    context_.link_clocks.clear();
     for (const auto& v : snapshot.vehicles) {
       const io::Link* link =
           v.index < access_.vehicles.size() ? access_.vehicles[v.index].link.get() : nullptr;
@@ -88,6 +89,11 @@ class RunDashboard::Backend final : public web::DashboardBackend {
       context_.gcs.push_back(access_.ground_stations.views(v.index));
       context_.link_share.push_back(link != nullptr ? access_.ground_stations.share(v.index, *link)
                                                     : web::LinkShareView{});
+      if (const auto clock = link != nullptr ? link->clock() : std::nullopt) {
+        context_.link_clocks.emplace_back(std::pair{clock->pose_stamps, clock->text});
+      } else {
+        context_.link_clocks.emplace_back(std::nullopt);
+      }
       const auto state = link != nullptr ? link->state() : io::TransportState::closed;
       context_.links_down.push_back(state == io::TransportState::down ||
                                     state == io::TransportState::closed);

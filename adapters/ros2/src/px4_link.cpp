@@ -11,6 +11,7 @@
 #include <asio/post.hpp>
 
 #include "dds.hpp"
+#include "mocaplink/core/dds_time_sync.hpp"
 #include "mocaplink/core/quaternion.hpp"
 #include "mocaplink/core/vehicle_state.hpp"
 #include "mocaplink/io/clock.hpp"
@@ -22,8 +23,6 @@ namespace {
 
 constexpr std::uint32_t kOdometrySampleBytes = 4 + wire::kPx4VehicleOdometryPayload;
 constexpr std::uint32_t kStatusSampleBytes = 1024;  // v1.14's is 88 bytes, later ones a little more
-/// A sample's timestamp at or above this (µs) is on the Agent's wall clock, not PX4's boot time.
-constexpr std::uint64_t kWallClockStampUs = 1'000'000'000'000'000ULL;
 /// Heard again after this long without a sample: the vehicle restarted or reconnected.
 constexpr auto kSilence = std::chrono::seconds(3);
 constexpr std::uint8_t kComponentAutopilot = 1;
@@ -99,10 +98,10 @@ class Px4DdsLink final : public io::Link {
     }
     for (const char* name : {"vehicle_status", "vehicle_status_v1"}) {
       read(name, wire::kPx4VehicleStatusType, kStatusSampleBytes,
-           [this](std::span<const std::uint8_t> s) { on_status(s); });
+           [this](std::span<const std::uint8_t> s, std::int64_t at) { on_status(s, at); });
     }
     read("vehicle_odometry", wire::kPx4VehicleOdometryType, kOdometrySampleBytes,
-         [this](std::span<const std::uint8_t> s) { on_odometry(s); });
+         [this](std::span<const std::uint8_t> s, std::int64_t at) { on_odometry(s, at); });
     set_state(io::TransportState::up,
               "DDS topics of " + (settings_.ns.empty() ? std::string("no namespace")
                                                        : "namespace " + settings_.ns));
@@ -120,10 +119,16 @@ class Px4DdsLink final : public io::Link {
     const auto message = mavlink::decode_message(*parsed);
     const auto* odometry = message ? std::get_if<mavlink::Odometry>(&*message) : nullptr;
     if (odometry == nullptr) return true;
-    // time_usec is the capture time on the host's steady clock (core/sender_clock.hpp).
-    const core::HostTime capture{std::chrono::microseconds(odometry->time_usec)};
-    const auto sample_us = static_cast<std::uint64_t>(io::unix_ns_of(capture) / 1000);
-    const auto now_us = static_cast<std::uint64_t>(io::unix_now_us());
+    // time_usec is the capture time on the host's steady clock (core/sender_clock.hpp). It goes
+    // only while PX4's own time sync converts it right; else 0, which PX4 stamps on arrival
+    // (core/dds_time_sync.hpp).
+    std::uint64_t sample_us = 0;
+    std::uint64_t now_us = 0;
+    if (sync_.stamps() == core::DdsPoseStamps::capture) {
+      const core::HostTime capture{std::chrono::microseconds(odometry->time_usec)};
+      sample_us = static_cast<std::uint64_t>(io::unix_ns_of(capture) / 1000);
+      now_us = static_cast<std::uint64_t>(io::unix_now_us());
+    }
     encoded_.clear();
     wire::encode_px4_vehicle_odometry(wire::px4_vehicle_odometry_of(*odometry, now_us, sample_us),
                                       encoded_);
@@ -150,21 +155,27 @@ class Px4DdsLink final : public io::Link {
 
   [[nodiscard]] std::size_t backlog_bytes() const noexcept override { return 0; }
   [[nodiscard]] std::string url() const override { return "ros2://" + settings_.ns; }
+  [[nodiscard]] std::optional<io::LinkClock> clock() const override {
+    return io::LinkClock{std::string(core::to_string(sync_.stamps())), sync_.text()};
+  }
 
  private:
+  /// A sample of PX4's and when it arrived here (µs since 1970, taken on DDS's thread).
+  using OnSample = std::function<void(std::span<const std::uint8_t>, std::int64_t arrival_us)>;
+
   void read(const char* topic_name, std::string_view type, std::uint32_t max_bytes,
-            std::function<void(std::span<const std::uint8_t>)> on_loop) {
+            OnSample on_loop) {
     detail::ReaderSettings rs;
     rs.topic = px4_topic(settings_.ns, "out", topic_name);
     rs.type = std::string(type);
     rs.depth = 1;
     rs.max_sample_bytes = max_bytes;
     rs.on_sample = [this, alive = liveness(), on_loop](std::span<const std::uint8_t> sample) {
-      asio::post(loop_, [this, alive, on_loop,
+      asio::post(loop_, [this, alive, on_loop, arrival_us = io::unix_now_us(),
                          bytes = std::vector<std::uint8_t>(sample.begin(), sample.end())] {
         if (alive.expired() || state() == io::TransportState::closed) return;
         counters_.bytes_received += bytes.size();
-        on_loop(bytes);
+        on_loop(bytes, arrival_us);
       });
     };
     std::string error;
@@ -176,12 +187,15 @@ class Px4DdsLink final : public io::Link {
     readers_.push_back(std::move(reader));
   }
 
-  /// The time_boot_ms of a sample stamped `timestamp_us` (see the file comment).
-  std::uint32_t boot_ms(std::uint64_t timestamp_us) {
+  /// The time_boot_ms of a sample stamped `timestamp_us` that arrived at `arrival_us` (see the file
+  /// comment); the stamp also judges PX4's time sync (sync_).
+  std::uint32_t boot_ms(std::uint64_t timestamp_us, std::int64_t arrival_us) {
     const core::HostTime now = io::host_now();
+    if (sync_.on_sample(timestamp_us, arrival_us, now))
+      spdlog::info("{}: {}", name(), sync_.text());
     if (!last_heard_ || now - *last_heard_ > kSilence) heard_since_ = now;
     last_heard_ = now;
-    if (timestamp_us > 0 && timestamp_us < kWallClockStampUs) {
+    if (timestamp_us > 0 && timestamp_us < core::kWallClockStampUs) {
       return static_cast<std::uint32_t>(timestamp_us / 1000);
     }
     return static_cast<std::uint32_t>(
@@ -195,13 +209,13 @@ class Px4DdsLink final : public io::Link {
     (void)receive_datagram(frame.bytes());
   }
 
-  void on_status(std::span<const std::uint8_t> sample) {
+  void on_status(std::span<const std::uint8_t> sample, std::int64_t arrival_us) {
     const auto status = wire::decode_px4_vehicle_status(sample);
     if (!status) {
       ++counters_.receive_errors;
       return;
     }
-    (void)boot_ms(status->timestamp);
+    (void)boot_ms(status->timestamp, arrival_us);
     mavlink::Heartbeat hb;
     hb.type = 0;  // MAV_TYPE_GENERIC: the type's field moves between PX4 versions
     hb.autopilot = core::kMavAutopilotPx4;
@@ -212,13 +226,13 @@ class Px4DdsLink final : public io::Link {
     deliver(hb);
   }
 
-  void on_odometry(std::span<const std::uint8_t> sample) {
+  void on_odometry(std::span<const std::uint8_t> sample, std::int64_t arrival_us) {
     const auto odometry = wire::decode_px4_vehicle_odometry(sample);
     if (!odometry) {
       ++counters_.receive_errors;
       return;
     }
-    const std::uint32_t t_ms = boot_ms(odometry->timestamp);
+    const std::uint32_t t_ms = boot_ms(odometry->timestamp, arrival_us);
     if (odometry->pose_frame != wire::Px4VehicleOdometry::kFrameNed) return;
     const auto& q = odometry->q;
     if (std::isfinite(q[0])) {
@@ -256,6 +270,7 @@ class Px4DdsLink final : public io::Link {
   std::vector<std::unique_ptr<detail::Reader>> readers_;
   std::vector<std::uint8_t> encoded_;
   std::uint8_t seq_ = 0;
+  core::DdsTimeSyncCheck sync_;  ///< PX4's time sync, from its stamps: which stamps to send
   std::optional<core::HostTime> last_heard_;
   core::HostTime heard_since_{};
 };

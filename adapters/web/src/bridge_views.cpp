@@ -318,17 +318,16 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
           state.last_heartbeat ? std::max(0.0, seconds_between(*state.last_heartbeat, now)) : 0.0};
     }
     if (in.link != core::VehicleLink::mavlink) {
-      // Over uXRCE-DDS PX4 syncs with the Agent, not with us: nothing of ours to show.
+      // Over uXRCE-DDS PX4 syncs with the Agent, not with us: the link judges that sync and
+      // picks the stamps (io::Link::clock()).
       v.timesync.state = TimesyncState::off;
-      v.clock = ClockView{std::nullopt,
-                          std::nullopt,
-                          std::nullopt,
-                          "capture",
-                          0,
-                          0,
-                          "not measured: no TIMESYNC goes over uXRCE-DDS; PX4 converts the poses' "
-                          "capture times with its own time sync to the Agent host's clock, never "
-                          "into its future"};
+      v.clock = ClockView{};
+      v.clock.verdict = std::nullopt;
+      v.clock.text = "no TIMESYNC goes over uXRCE-DDS: PX4 syncs with the Agent's host";
+      if (i < context.link_clocks.size() && context.link_clocks[i]) {
+        v.clock.pose_stamps = context.link_clocks[i]->first;
+        v.clock.text = context.link_clocks[i]->second;
+      }
     } else {
       if (state.timesync) {
         v.timesync = TimesyncView{TimesyncState::synced,

@@ -108,6 +108,12 @@ async function main() {
     assert.equal(v[name].timesync.state, 'off');
     assert.equal(v[name].clock.verdict, null);
   }
+  // The stand-ins stamp on this host's clock, as a PX4 whose time sync is right: after 5 s of it,
+  // the capture time goes (before, 0: PX4 stamps on arrival).
+  for (const name of ['a', 'b']) {
+    assert.equal(v[name].clock.pose_stamps, 'capture', JSON.stringify(v[name].clock));
+    assert.match(v[name].clock.text, /^PX4's uXRCE-DDS time sync within [-+][0-9.]+ ms of this host's clock/);
+  }
   // The set-up list cannot be read over DDS, and the dashboard says so.
   for (const name of ['a', 'b']) {
     assert.equal(v[name].setup.state, 'unavailable');
@@ -142,7 +148,14 @@ async function main() {
   assert.ok(samples(b).length > 500, 'poses at the second PX4');
   const offsets = [];
   let settled = 0;
+  let arrival = 0;
   for (const x of got) {
+    if (x.timestamp_sample === 0) {  // PX4's sync not judged yet: stamped on arrival
+      assert.equal(x.timestamp, 0);
+      assert.equal(offsets.length + settled, 0, 'arrival stamps after capture stamps began');
+      arrival += 1;
+      continue;
+    }
     const t = x.position[0] / 0.2;  // the recording's time, read back from the pose
     assert.equal(x.pose_frame, 2, 'FRD pose frame');
     assert.equal(x.velocity_frame, 3, 'body-frame velocity');
@@ -168,7 +181,9 @@ async function main() {
   // Capture times: the same offset from the recording's clock for every pose.
   const spreadMs = (Math.max(...offsets) - Math.min(...offsets)) / 1e3;
   assert.ok(settled > 400 && spreadMs < 3, `${settled} poses, timestamp_sample − t spread ${spreadMs} ms`);
-  console.log(`px4_1: ${got.length} poses read by PX4's type, timestamp_sample − capture spread ` +
+  assert.ok(arrival > 100 && arrival < 500, `${arrival} poses stamped on arrival first`);
+  console.log(`px4_1: ${got.length} poses read by PX4's type (${arrival} first stamped on arrival), ` +
+    'timestamp_sample − capture spread ' +
     `${spreadMs.toFixed(3)} ms; px4_2 disagrees by ${v.b.agreement.yaw_offset_deg.toFixed(1)}°; ` +
     'px4_9 silent');
 }

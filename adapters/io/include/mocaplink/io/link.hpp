@@ -60,6 +60,13 @@ enum class TransportState { connecting, up, down, closed };
   return "unknown";
 }
 
+/// Where a link itself decides the stamps of the poses it carries (ros2://: PX4's own time sync
+/// converts them, core/dds_time_sync.hpp): which, and the sentence that says why.
+struct LinkClock {
+  std::string pose_stamps;  ///< "capture" or "arrival"
+  std::string text;
+};
+
 /// Cumulative counts since the link was created. Drops of incoming bytes by reason are in
 /// `parser` (bad CRC, bad signature, replay, unsigned rejected, ...).
 struct LinkCounters {
@@ -148,6 +155,8 @@ class Link {
   [[nodiscard]] virtual std::size_t backlog_bytes() const noexcept = 0;
   /// The URL the link was made from ("udp://127.0.0.1:14550").
   [[nodiscard]] virtual std::string url() const = 0;
+  /// The link's own choice of pose stamps (nullopt: the MAVLink messages' own, the core's).
+  [[nodiscard]] virtual std::optional<LinkClock> clock() const { return std::nullopt; }
 
   [[nodiscard]] TransportState state() const noexcept { return state_; }
   /// Counters, including a copy of the parser's.

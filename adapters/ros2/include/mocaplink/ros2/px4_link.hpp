@@ -6,8 +6,10 @@
 //        /NAMESPACE/fmu/in/vehicle_visual_odometry, field by field (wire/px4_messages.hpp), with
 //        timestamp_sample the pose's capture time on this host's wall clock and timestamp the send
 //        time (PX4 maps both through its time sync with the Agent's host and never lets them lie
-//        in its future). Every other MAVLink message (heartbeat, TIMESYNC, parameter and stream
-//        requests) has no DDS counterpart and is not sent.
+//        in its future) while PX4's sync is right, judged from the stamps of what PX4 sends
+//        (core/dds_time_sync.hpp); otherwise both 0, which PX4 stamps on arrival (clock()).
+//        Every other MAVLink message (heartbeat, TIMESYNC, parameter and stream requests) has no
+//        DDS counterpart and is not sent.
 //   in   /NAMESPACE/fmu/out/vehicle_status (v1.14, v1.15) or vehicle_status_v1 (v1.16+) →
 //        HEARTBEAT: autopilot PX4, the armed flag, the flight mode as PX4's custom_mode;
 //        /NAMESPACE/fmu/out/vehicle_odometry → ATTITUDE and LOCAL_POSITION_NED, what the agreement

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mocaplink/core/bridge.hpp"
@@ -22,6 +23,9 @@ struct BridgeStatusContext {
   std::vector<bool> links_down;    ///< per vehicle: the link cannot send (may be shorter)
   std::vector<std::vector<GcsEndpointView>> gcs{};  ///< per vehicle (may be shorter)
   std::vector<LinkShareView> link_share{};          ///< per vehicle (may be shorter)
+  /// Per vehicle (may be shorter): the stamps a link chose itself and why (ros2:// links:
+  /// "capture" or "arrival", io::Link::clock()); nullopt where the core's apply.
+  std::vector<std::optional<std::pair<std::string, std::string>>> link_clocks{};
   /// The bridge's own latency over the latest frames (the daemon measures it), if any.
   std::optional<core::LatencySummary> bridge_latency{};
   /// Frames the daemon skipped because they reached its loop too late (core::LateFrames).
