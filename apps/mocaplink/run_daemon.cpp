@@ -719,6 +719,13 @@ int Daemon::run() {
   start_source();
   every(tick_timer_, kTickPeriod, [this] {
     const core::HostTime now = io::host_now();
+    // A ros2:// link picks its poses' stamps from PX4's own time sync: the delay follows it.
+    for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {
+      const io::Link* link = vehicles_[slot].link.get();
+      if (const auto clock = link != nullptr ? link->clock() : std::nullopt) {
+        (void)bridge_.set_capture_stamps(slot, clock->pose_stamps == "capture");
+      }
+    }
     dispatch(bridge_.on_tick(now));
     ground_stations_.on_tick(now);
     for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {

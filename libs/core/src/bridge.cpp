@@ -596,7 +596,7 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     setup_target.compid = target.compid;
     setup_target.armed = heard.heartbeat && heard.heartbeat->armed;
     DelayInputs delay = delay_inputs(capture_age_ms, heard);
-    delay.dds_time_sync = !mavlink;
+    delay.dds_time_sync = !mavlink && v.capture_stamps;
     v.setup.on_tick(now, setup_target, delay, requests, notes);
     stream_events(i, notes, now, out, BridgeEventKind::vehicle_setup);
     const VehicleReaction sources =
@@ -653,6 +653,13 @@ bool Bridge::raise_signing_timestamp(std::size_t vehicle, std::uint64_t timestam
   Vehicle* v = live(vehicle);
   if (v == nullptr) return false;
   v->sender.raise_signing_timestamp(timestamp_10us);
+  return true;
+}
+
+bool Bridge::set_capture_stamps(std::size_t vehicle, bool capture) {
+  Vehicle* v = live(vehicle);
+  if (v == nullptr) return false;
+  v->capture_stamps = capture;
   return true;
 }
 

@@ -724,16 +724,21 @@ VehicleSetupSnapshot VehicleSetup::snapshot() const {
     if (delay_.capture_age_ms) {
       s.delay.measured_ms =
           *delay_.capture_age_ms + (delay_.link_rtt_ms ? *delay_.link_rtt_ms / 2 : 0);
+      const bool dds = link_ == VehicleLink::px4_dds;
       s.delay.basis =
           "capture to mocaplink (median) " + format_value(*delay_.capture_age_ms) + " ms" +
           (delay_.link_rtt_ms
                ? " + half the link round trip " + format_value(*delay_.link_rtt_ms / 2) + " ms"
-           : delay_.dds_time_sync ? std::string()
-                                  : std::string(" (link round trip not measured yet)"));
-      if (delay_.dds_time_sync && s.delay.recommended_ms == 0.0) {
+           : dds ? std::string()
+                 : std::string(" (link round trip not measured yet)"));
+      if (dds && delay_.dds_time_sync && s.delay.recommended_ms == 0.0) {
         s.delay.basis +=
             "; PX4 translates the capture time with its uXRCE-DDS time sync, so 0 is right while "
             "mocaplink runs on the Agent's host (or both hosts keep NTP time)";
+      } else if (dds) {
+        s.delay.basis +=
+            "; PX4 stamps these poses on arrival (its uXRCE-DDS time sync is not within 5 ms of "
+            "this host's clock), so the delay is the whole of it, and DDS delivery adds a few ms";
       } else if (family_ == AutopilotFamily::px4 && s.delay.recommended_ms == 0.0) {
         s.delay.basis += "; PX4 translates the capture time with TIMESYNC, so 0 is right";
       }

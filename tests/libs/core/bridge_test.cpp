@@ -578,7 +578,8 @@ TEST(BridgeVehicles, APx4OverDdsIsSentOnlyPosesAndAgreesOnGravity) {
   c.vehicles = {vehicle("quad", "Quad", Profile::px4, 1)};
   c.vehicles[0].link = VehicleLink::px4_dds;
   Bridge bridge = make_bridge(c);
-  mavlink::Heartbeat hb;  // what px4_link.cpp makes of vehicle_status
+  EXPECT_TRUE(bridge.set_capture_stamps(0, true));  // its link judged PX4's time sync right
+  mavlink::Heartbeat hb;                            // what px4_link.cpp makes of vehicle_status
   hb.autopilot = kMavAutopilotPx4;
   hb.base_mode = kMavModeFlagSafetyArmed;
   std::size_t odometry = 0;

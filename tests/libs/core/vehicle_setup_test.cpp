@@ -524,6 +524,17 @@ TEST(VehicleSetup, OverDdsNothingIsAskedAndTheListIsUnavailable) {
   EXPECT_EQ(snap.delay.recommended_ms, 0.0);
   EXPECT_NE(snap.delay.basis.find("uXRCE-DDS time sync"), std::string::npos) << snap.delay.basis;
   EXPECT_EQ(snap.delay.basis.find("not measured yet"), std::string::npos) << snap.delay.basis;
+  // While the link sends stamps of 0 (PX4's sync not right), PX4 stamps on arrival: the whole
+  // delay.
+  Harness a;
+  a.setup = VehicleSetup(kSysid, kOurCompid, Profile::px4, MessageSet{MessageKind::odometry},
+                         VehicleLink::px4_dds);
+  a.delay.capture_age_ms = 3.0;
+  a.run(2000);
+  EXPECT_EQ(a.setup.snapshot().delay.recommended_ms, 3.0);
+  EXPECT_NE(a.setup.snapshot().delay.basis.find("PX4 stamps these poses on arrival"),
+            std::string::npos)
+      << a.setup.snapshot().delay.basis;
   // Logged once, with where to check it instead.
   EXPECT_EQ(
       std::count_if(h.notes.begin(), h.notes.end(),

@@ -275,6 +275,10 @@ class Bridge {
   bool set_rate_hz(std::size_t vehicle, double rate_hz);
   bool set_messages(std::size_t vehicle, const MessageSet& messages);
   bool set_paused(std::size_t vehicle, bool paused);
+  /// A px4_dds vehicle's link sends capture stamps (true: PX4's own time sync converts them, so
+  /// EKF2_EV_DELAY is 0) or stamps of 0 that PX4 takes at arrival (false, the default: the delay
+  /// recommendation is then the whole measured delay). Ignored for a MAVLink link.
+  bool set_capture_stamps(std::size_t vehicle, bool capture);
 
   /// Writes the fixes of the named parameters to the vehicle in `slot` (VehicleSetup::apply: only
   /// wrong items of its list as it stands, never while armed). The writes go out from the next
@@ -337,6 +341,7 @@ class Bridge {
     VehicleStreams streams;
     VehicleSetup setup;
     std::uint64_t reboots_seen = 0;  ///< streams' reboot count the setup last followed
+    bool capture_stamps = false;     ///< px4_dds only: set_capture_stamps
   };
   Bridge(const BridgeConfig& config, HostTime start);
 

@@ -141,8 +141,9 @@ struct DelayInputs {
   std::optional<double> capture_age_ms;
   std::optional<double> link_rtt_ms;
   bool vehicle_timesync = false;  ///< the vehicle sends TIMESYNC requests (we answer them)
-  /// PX4 over uXRCE-DDS: it converts the capture time with its own time sync to the Agent
-  /// host's clock (protocols/ros2-dds.md §4).
+  /// PX4 over uXRCE-DDS, sent capture stamps: it converts them with its own time sync to the
+  /// Agent host's clock (protocols/ros2-dds.md §4). False on such a link: stamps of 0, which PX4
+  /// takes at arrival (core/dds_time_sync.hpp).
   bool dds_time_sync = false;
 };
 
