@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mocaplink/config/url.hpp"
+#include "mocaplink/core/ros.hpp"
 #include "text_util.hpp"
 
 namespace mocaplink::config {
@@ -190,24 +191,16 @@ Result parse_ros2(const UrlParts& parts) {
   if (auto error = check_query_keys(parts, {}, "ros2://"); !error.empty()) {
     return Result::failure(error);
   }
+  // The namespace of ROS names (core::ros_namespace_problem, as for [ros2] namespace), without
+  // the slashes at either end.
   std::string_view ns = parts.body;
   while (!ns.empty() && ns.front() == '/') ns.remove_prefix(1);
   while (!ns.empty() && ns.back() == '/') ns.remove_suffix(1);
-  bool segment_start = true;
-  for (const char c : ns) {
-    const bool letter = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
-    const bool digit = c >= '0' && c <= '9';
-    if (c == '/' && !segment_start) {
-      segment_start = true;
-      continue;
-    }
-    if (!(letter || (digit && !segment_start))) {
-      return Result::failure(
-          "ros2:// takes PX4's namespace: letters, digits and '_' in segments separated by '/', "
-          "none starting with a digit (as in ros2://px4_1, or ros2:// for none), got " +
-          detail::quoted(parts.body));
-    }
-    segment_start = false;
+  if (auto problem = core::ros_namespace_problem(ns)) {
+    return Result::failure(
+        "ros2:// takes PX4's namespace: letters, digits and '_' in segments separated by '/', "
+        "none starting with a digit (as in ros2://px4_1, or ros2:// for none), got " +
+        detail::quoted(parts.body) + ": it " + *problem);
   }
   LinkUrl link;
   link.kind = LinkKind::ros2;
