@@ -37,6 +37,7 @@ constexpr std::array<MessageInfo, kMessageCount> kInfos{{
     info_of<HilGps>(),
     info_of<AttPosMocap>(),
     info_of<AutopilotVersion>(),
+    info_of<Ahrs2>(),
     info_of<EkfStatusReport>(),
     info_of<EstimatorStatus>(),
     info_of<GpsInput>(),
@@ -135,22 +136,24 @@ const MessageInfo* find_message_info(std::uint32_t msgid) noexcept {
       return &kInfos[22];
     case 148:
       return &kInfos[23];
-    case 193:
+    case 178:
       return &kInfos[24];
-    case 230:
+    case 193:
       return &kInfos[25];
-    case 232:
+    case 230:
       return &kInfos[26];
-    case 242:
+    case 232:
       return &kInfos[27];
-    case 245:
+    case 242:
       return &kInfos[28];
-    case 253:
+    case 245:
       return &kInfos[29];
-    case 256:
+    case 253:
       return &kInfos[30];
-    case 331:
+    case 256:
       return &kInfos[31];
+    case 331:
+      return &kInfos[32];
     default:
       return nullptr;
   }
@@ -189,6 +192,7 @@ std::optional<Message> make_message(std::string_view name) noexcept {
   if (name == HilGps::kName) return HilGps{};
   if (name == AttPosMocap::kName) return AttPosMocap{};
   if (name == AutopilotVersion::kName) return AutopilotVersion{};
+  if (name == Ahrs2::kName) return Ahrs2{};
   if (name == EkfStatusReport::kName) return EkfStatusReport{};
   if (name == EstimatorStatus::kName) return EstimatorStatus{};
   if (name == GpsInput::kName) return GpsInput{};
@@ -250,6 +254,8 @@ std::optional<Message> make_message(std::uint32_t msgid) noexcept {
       return AttPosMocap{};
     case AutopilotVersion::kId:
       return AutopilotVersion{};
+    case Ahrs2::kId:
+      return Ahrs2{};
     case EkfStatusReport::kId:
       return EkfStatusReport{};
     case EstimatorStatus::kId:
@@ -322,6 +328,8 @@ std::optional<Message> unpack_message(std::uint32_t msgid,
       return unpack_as<AttPosMocap>(payload);
     case AutopilotVersion::kId:
       return unpack_as<AutopilotVersion>(payload);
+    case Ahrs2::kId:
+      return unpack_as<Ahrs2>(payload);
     case EkfStatusReport::kId:
       return unpack_as<EkfStatusReport>(payload);
     case EstimatorStatus::kId:

@@ -1711,6 +1711,64 @@ void for_each_field(M& m, F&& f) {
   f(M::kFields[11], m.uid2);
 }
 
+/// AHRS2 (#178).
+struct Ahrs2 {
+  static constexpr std::uint32_t kId = 178;
+  static constexpr std::string_view kName = "AHRS2";
+  static constexpr std::uint8_t kCrcExtra = 47;
+  static constexpr std::uint8_t kBaseLength = 24;
+  static constexpr std::uint8_t kMaxLength = 24;
+  static constexpr std::array<FieldInfo, 6> kFields{{
+      {"roll", FieldType::f32, 1, 0, false, "rad", ""},
+      {"pitch", FieldType::f32, 1, 4, false, "rad", ""},
+      {"yaw", FieldType::f32, 1, 8, false, "rad", ""},
+      {"altitude", FieldType::f32, 1, 12, false, "m", ""},
+      {"lat", FieldType::i32, 1, 16, false, "degE7", ""},
+      {"lng", FieldType::i32, 1, 20, false, "degE7", ""},
+  }};
+
+  float roll{};        ///< [rad]; wire offset 0
+  float pitch{};       ///< [rad]; wire offset 4
+  float yaw{};         ///< [rad]; wire offset 8
+  float altitude{};    ///< [m]; wire offset 12
+  std::int32_t lat{};  ///< [degE7]; wire offset 16
+  std::int32_t lng{};  ///< [degE7]; wire offset 20
+
+  /// Writes every field (untruncated) at its wire offset.
+  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
+    detail::store(p, 0, roll);
+    detail::store(p, 4, pitch);
+    detail::store(p, 8, yaw);
+    detail::store(p, 12, altitude);
+    detail::store(p, 16, lat);
+    detail::store(p, 20, lng);
+  }
+  /// Reads every field from a full-length (zero-filled) payload.
+  [[nodiscard]] static Ahrs2 unpack(std::span<const std::uint8_t, kMaxLength> p) noexcept {
+    Ahrs2 m;
+    detail::load(p, 0, m.roll);
+    detail::load(p, 4, m.pitch);
+    detail::load(p, 8, m.yaw);
+    detail::load(p, 12, m.altitude);
+    detail::load(p, 16, m.lat);
+    detail::load(p, 20, m.lng);
+    return m;
+  }
+  bool operator==(const Ahrs2&) const = default;
+};
+
+/// Calls f(const FieldInfo&, field&) for each field of a Ahrs2 in wire order.
+template <typename M, typename F>
+requires std::same_as<std::remove_const_t<M>, Ahrs2>
+void for_each_field(M& m, F&& f) {
+  f(M::kFields[0], m.roll);
+  f(M::kFields[1], m.pitch);
+  f(M::kFields[2], m.yaw);
+  f(M::kFields[3], m.altitude);
+  f(M::kFields[4], m.lat);
+  f(M::kFields[5], m.lng);
+}
+
 /// EKF_STATUS_REPORT (#193).
 struct EkfStatusReport {
   static constexpr std::uint32_t kId = 193;
@@ -2320,11 +2378,12 @@ using Message =
                  GpsRawInt, Attitude, AttitudeQuaternion, LocalPositionNed, GlobalPositionInt,
                  SetGpsGlobalOrigin, GpsGlobalOrigin, RequestDataStream, CommandLong, CommandAck,
                  GlobalVisionPositionEstimate, VisionPositionEstimate, VisionSpeedEstimate,
-                 Timesync, HilGps, AttPosMocap, AutopilotVersion, EkfStatusReport, EstimatorStatus,
-                 GpsInput, HomePosition, ExtendedSysState, Statustext, SetupSigning, Odometry>;
+                 Timesync, HilGps, AttPosMocap, AutopilotVersion, Ahrs2, EkfStatusReport,
+                 EstimatorStatus, GpsInput, HomePosition, ExtendedSysState, Statustext,
+                 SetupSigning, Odometry>;
 
 /// Number of known messages and the largest payload among them.
-inline constexpr std::size_t kMessageCount = 32;
+inline constexpr std::size_t kMessageCount = 33;
 inline constexpr std::size_t kLargestPayload = 233;
 
 /// The definition of message `msgid`, or nullptr if mocaplink does not know it. O(1).
