@@ -36,8 +36,6 @@ struct ReaderSettings {
   /// Called from a DDS thread with each sample (encapsulation header first; valid during the
   /// call only).
   std::function<void(std::span<const std::uint8_t>)> on_sample;
-  /// Called from a DDS thread whenever the number of matched writers changes (the new count).
-  std::function<void(std::uint32_t)> on_matched;
 };
 
 /// Destroying a reader stops its callbacks (the destructor waits for one that runs).

@@ -117,8 +117,7 @@ class FastDdsWriter final : public Writer {
 
 class ReadListener final : public dds::DataReaderListener {
  public:
-  explicit ReadListener(const ReaderSettings& settings)
-      : on_sample_(settings.on_sample), on_matched_(settings.on_matched) {}
+  explicit ReadListener(const ReaderSettings& settings) : on_sample_(settings.on_sample) {}
   void on_data_available(dds::DataReader* reader) override {
     dds::SampleInfo info;
     while (reader->take_next_sample(&sample_, &info) ==
@@ -126,14 +125,9 @@ class ReadListener final : public dds::DataReaderListener {
       if (info.valid_data && on_sample_) on_sample_(sample_);
     }
   }
-  void on_subscription_matched(dds::DataReader* /*reader*/,
-                               const dds::SubscriptionMatchedStatus& info) override {
-    if (on_matched_) on_matched_(static_cast<std::uint32_t>(std::max(0, info.current_count)));
-  }
 
  private:
   std::function<void(std::span<const std::uint8_t>)> on_sample_;
-  std::function<void(std::uint32_t)> on_matched_;
   std::vector<std::uint8_t> sample_;  // the DDS thread's own
 };
 
