@@ -723,7 +723,7 @@ int Daemon::run() {
     for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {
       const io::Link* link = vehicles_[slot].link.get();
       if (const auto clock = link != nullptr ? link->clock() : std::nullopt) {
-        (void)bridge_.set_capture_stamps(slot, clock->pose_stamps == "capture");
+        (void)bridge_.set_capture_stamps(slot, clock->pose_stamps == core::DdsPoseStamps::capture);
       }
     }
     dispatch(bridge_.on_tick(now));

@@ -90,7 +90,7 @@ class RunDashboard::Backend final : public web::DashboardBackend {
       context_.link_share.push_back(link != nullptr ? access_.ground_stations.share(v.index, *link)
                                                     : web::LinkShareView{});
       if (const auto clock = link != nullptr ? link->clock() : std::nullopt) {
-        context_.link_clocks.emplace_back(std::pair{clock->pose_stamps, clock->text});
+        context_.link_clocks.emplace_back(web::LinkClockView{clock->pose_stamps, clock->text});
       } else {
         context_.link_clocks.emplace_back(std::nullopt);
       }

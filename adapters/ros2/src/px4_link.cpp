@@ -156,7 +156,7 @@ class Px4DdsLink final : public io::Link {
   [[nodiscard]] std::size_t backlog_bytes() const noexcept override { return 0; }
   [[nodiscard]] std::string url() const override { return "ros2://" + settings_.ns; }
   [[nodiscard]] std::optional<io::LinkClock> clock() const override {
-    return io::LinkClock{std::string(core::to_string(sync_.stamps())), sync_.text()};
+    return io::LinkClock{sync_.stamps(), sync_.text()};
   }
 
  private:

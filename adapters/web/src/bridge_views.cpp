@@ -325,8 +325,8 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
       v.clock.verdict = std::nullopt;
       v.clock.text = "no TIMESYNC goes over uXRCE-DDS: PX4 syncs with the Agent's host";
       if (i < context.link_clocks.size() && context.link_clocks[i]) {
-        v.clock.pose_stamps = context.link_clocks[i]->first;
-        v.clock.text = context.link_clocks[i]->second;
+        v.clock.pose_stamps = std::string(core::to_string(context.link_clocks[i]->pose_stamps));
+        v.clock.text = context.link_clocks[i]->text;
       }
     } else {
       if (state.timesync) {

@@ -161,7 +161,7 @@ TEST(Px4Link, HeardArmedAndPosesAsVehicleOdometry) {
   EXPECT_EQ(payload_at<std::uint64_t>(last, 8), 0U);
   const auto clock = link->clock();
   ASSERT_TRUE(clock);
-  EXPECT_EQ(clock->pose_stamps, "arrival");
+  EXPECT_EQ(clock->pose_stamps, core::DdsPoseStamps::arrival);
   EXPECT_NE(clock->text.find("not judged yet"), std::string::npos) << clock->text;
   EXPECT_EQ(payload_at<std::uint8_t>(last, 16), 2);  // POSE_FRAME_FRD
   EXPECT_EQ(payload_at<float>(last, 20), 0.5F);

@@ -26,6 +26,7 @@
 #include <string>
 #include <string_view>
 
+#include "mocaplink/core/dds_time_sync.hpp"
 #include "mocaplink/core/retry_schedule.hpp"
 #include "mocaplink/core/time.hpp"
 #include "mocaplink/mavlink/frame.hpp"
@@ -63,7 +64,7 @@ enum class TransportState { connecting, up, down, closed };
 /// Where a link itself decides the stamps of the poses it carries (ros2://: PX4's own time sync
 /// converts them, core/dds_time_sync.hpp): which, and the sentence that says why.
 struct LinkClock {
-  std::string pose_stamps;  ///< "capture" or "arrival"
+  core::DdsPoseStamps pose_stamps = core::DdsPoseStamps::arrival;
   std::string text;
 };
 

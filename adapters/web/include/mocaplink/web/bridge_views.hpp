@@ -10,10 +10,17 @@
 #include <vector>
 
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/dds_time_sync.hpp"
 #include "mocaplink/core/latency_window.hpp"
 #include "mocaplink/web/status.hpp"
 
 namespace mocaplink::web {
+
+/// The stamps a link chose for its poses itself and the sentence saying why (io::LinkClock).
+struct LinkClockView {
+  core::DdsPoseStamps pose_stamps = core::DdsPoseStamps::arrival;
+  std::string text;
+};
 
 /// What the daemon knows beyond the core, per snapshot.
 struct BridgeStatusContext {
@@ -23,9 +30,9 @@ struct BridgeStatusContext {
   std::vector<bool> links_down;    ///< per vehicle: the link cannot send (may be shorter)
   std::vector<std::vector<GcsEndpointView>> gcs{};  ///< per vehicle (may be shorter)
   std::vector<LinkShareView> link_share{};          ///< per vehicle (may be shorter)
-  /// Per vehicle (may be shorter): the stamps a link chose itself and why (ros2:// links:
-  /// "capture" or "arrival", io::Link::clock()); nullopt where the core's apply.
-  std::vector<std::optional<std::pair<std::string, std::string>>> link_clocks{};
+  /// Per vehicle (may be shorter): the stamps a link chose itself and why (ros2:// links,
+  /// io::Link::clock()); nullopt where the core's apply.
+  std::vector<std::optional<LinkClockView>> link_clocks{};
   /// The bridge's own latency over the latest frames (the daemon measures it), if any.
   std::optional<core::LatencySummary> bridge_latency{};
   /// Frames the daemon skipped because they reached its loop too late (core::LateFrames).
