@@ -289,7 +289,7 @@ function renderVehicle(card, v, fromPatch = false) {
   // vehicle for and what came of it), with the offsets known so far.
   // With a verdict the reason says what was not checked (mocap compared with itself) and, for a
   // disagreement, the axis settings that fix it.
-  const offsets = `tilt ${num(ag.tilt_offset_deg, 1, '°')} · yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}`;
+  const offsets = `tilt ${num(ag.tilt_offset_deg, 1, '°')} · yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}${ag.heading_offset_deg == null ? '' : ` · compass ${num(ag.heading_offset_deg, 1, '°')}`}`;
   $('.v-agreement', r).textContent = ag.verdict === 'unknown'
     ? `unknown: ${ag.reason || 'waiting for the vehicle\'s estimate'}${ag.yaw_offset_deg === null && ag.position_offset_m === null && ag.tilt_offset_deg == null ? '' : ` · ${offsets}`}`
     : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · ${offsets}${ag.reason ? ` · ${ag.reason}` : ''}`;

@@ -100,9 +100,12 @@ void print_text(const nlohmann::json& v) {
       std::snprintf(buffer, sizeof buffer, "%.*f", digits, agreement.at(key).get<double>());
       return std::string(buffer);
     };
-    std::printf("  agreement: %s (tilt %s deg, yaw %s deg, position %s m)\n", verdict.c_str(),
+    // The compass (AHRS2) where the vehicle's yaw is mocap's and it has one.
+    const std::string compass = fixed("heading_offset_deg", 1);
+    std::printf("  agreement: %s (tilt %s deg, yaw %s deg, position %s m%s)\n", verdict.c_str(),
                 fixed("tilt_offset_deg", 1).c_str(), fixed("yaw_offset_deg", 1).c_str(),
-                fixed("position_offset_m", 3).c_str());
+                fixed("position_offset_m", 3).c_str(),
+                compass == "-" ? "" : (", compass " + compass + " deg").c_str());
     const nlohmann::json& fix = agreement.at("fix");
     if (fix.is_object()) {
       for (const auto& line : fix.at("lines"))

@@ -222,7 +222,8 @@ std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot
   }
   const core::EstimateSources& sources = a.sources;
   if (sources.yaw.source == core::EstimateSource::unknown ||
-      sources.position.source == core::EstimateSource::unknown) {
+      sources.position.source == core::EstimateSource::unknown ||
+      sources.heading.source == core::EstimateSource::unknown) {
     return core::describe_unchecked(sources);  // no agreement until it is known
   }
   return "comparing the vehicle's estimate with mocap";
@@ -351,6 +352,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     v.agreement = AgreementView{state.agreement.verdict, state.agreement.yaw_offset_deg,
                                 state.agreement.position_offset_m,
                                 agreement_reason(snapshot, in, v), state.agreement.tilt_offset_deg};
+    v.agreement.heading_offset_deg = state.agreement.heading_offset_deg;
     if (const auto& fix = state.agreement.fix) {
       v.agreement.fix = AxisFixView{std::string(core::to_string(fix->kind)),
                                     fix->lines,
@@ -361,8 +363,14 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     }
     const std::uint8_t autopilot = state.heartbeat ? state.heartbeat->autopilot : 0;
     for (const core::VehicleStream stream : core::kVehicleStreams) {
-      // The estimator's only once the autopilot says which message it is.
+      // The estimator's only once the autopilot says which message it is; AHRS2 only where it
+      // is asked for or arrives.
       if (stream == core::VehicleStream::estimator && !core::asked_of(stream, autopilot)) continue;
+      if (stream == core::VehicleStream::heading &&
+          !core::checks_second_heading(state.agreement.sources) &&
+          in.streams[stream].state == core::StreamState::idle) {
+        continue;
+      }
       v.streams[std::string(core::mavlink_name(stream, autopilot))] =
           core::to_string(in.streams[stream].state);
     }

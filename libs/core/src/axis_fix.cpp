@@ -211,7 +211,15 @@ AxisFix find_axis_fix(const Eigen::Matrix3d& r_world_body, const AxisSettings& c
     if (other != nullptr) out.alternative_lines = lines_between(current, other->settings);
     out.text = "fix: " + joined(out.lines) + " (then " + residual_text(*best) + ")";
     if (!out.alternative_lines.empty()) {
-      out.text += "; or, as well at this pose: " + joined(out.alternative_lines);
+      // With a heading, two fits of the same up differ by a turn about the vertical: a nose
+      // turned on the body or an arena whose north is turned, which no pose at rest tells
+      // apart (every vehicle showing the same heading offset says it is the arena). Without
+      // one, a wrong up and a wrong body_up differ with the pose: yawing the vehicle decides.
+      const bool turned = vehicle.heading_rad && other->settings.up == best->settings.up;
+      out.text += turned ? "; or, if it is the arena's north that is turned (no pose at rest "
+                           "tells the two apart): "
+                         : "; or, as well at this pose: ";
+      out.text += joined(out.alternative_lines);
     }
     return out;
   }

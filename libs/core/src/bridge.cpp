@@ -29,7 +29,8 @@ EstimateSources sources_of(const VehicleSetup& setup, VehicleLink link) {
 
 /// A disagreement at rest: the axis settings that make mocap agree with the vehicle (issue 48).
 /// The raw orientation undoes the configured mapping (R_world_body = Wᵀ · R_ned_frd · Bᵀ); the
-/// vehicle's yaw is a heading only where it is its own (a compass), never mocap's fed back.
+/// vehicle's yaw is a heading only where it is its own (a compass), never mocap's fed back; where
+/// it is mocap's, AHRS2's compass heading is, when there is one (estimate_sources.hpp).
 void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
                    std::optional<SignedAxis> source_up, const BodyEstimate& mocap,
                    VehicleState& state) {
@@ -42,9 +43,21 @@ void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
   const Eigen::Matrix3d raw =
       world.r_ned_world().transpose() * r_ned_frd * body.r_body_frd().transpose();
   VehicleAtRest vehicle{*a.roll_rad, *a.pitch_rad, std::nullopt};
-  if (a.sources.yaw.source == EstimateSource::independent) vehicle.heading_rad = a.yaw_rad;
+  if (a.sources.yaw.source == EstimateSource::independent) {
+    vehicle.heading_rad = a.yaw_rad;
+  } else if (state.heading_wanted()) {
+    vehicle.heading_rad = a.heading_rad;
+  }
   const AxisSettings current{world.up(), world.north(), body.forward(), body.up()};
   state.set_axis_fix(find_axis_fix(raw, current, vehicle, source_up));
+}
+
+/// A disagreement's fix named before the vehicle's own heading (AHRS2) arrived: named again
+/// with it, so the nose is checked too.
+bool fix_lacks_heading(const VehicleState& state) {
+  const Agreement& a = state.agreement();
+  return a.verdict == AgreementVerdict::disagree && a.fix && !a.fix->heading_residual_deg &&
+         state.heading_wanted() && a.heading_rad;
 }
 
 }  // namespace
@@ -469,6 +482,9 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
     if (a.position_offset_m) {
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
     }
+    if (a.heading_offset_deg) {
+      text += ", heading offset " + std::to_string(*a.heading_offset_deg) + " deg (AHRS2)";
+    }
     if (a.settling) text += " (the vehicle booted moments ago: compared once it has settled)";
     if (a.fix) text += "; " + a.fix->text;
     if (const auto unchecked = describe_unchecked(a.sources)) text += "; " + *unchecked;
@@ -511,7 +527,7 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
   }
   vehicle_events(vehicle, sources, received, out);
   const VehicleReaction reaction = v.state.on_message(message, received, &mocap);
-  if (reaction.agreement_changed) {
+  if (reaction.agreement_changed || fix_lacks_heading(v.state)) {
     name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, mocap, v.state);
   }
   if (reaction.timesync_reply && v.spec.enabled) {
@@ -573,6 +589,7 @@ BridgeOutput Bridge::on_tick(HostTime now) {
       target.autopilot = heard.heartbeat->autopilot;
       target.compid = heard.heartbeat->compid;
     }
+    target.want_heading = v.state.heading_wanted();
     std::vector<mavlink::Message> requests;
     std::vector<std::string> notes;
     if (mavlink) v.streams.on_tick(now, target, requests, notes);

@@ -1,7 +1,11 @@
 // Estimate sources (estimate_sources.hpp): is the vehicle's yaw / position mocaplink's own?
 #include "mocaplink/core/estimate_sources.hpp"
 
+#include <array>
 #include <cmath>
+#include <cstdio>
+
+#include "mocaplink/core/axis_fix.hpp"
 
 namespace mocaplink::core {
 namespace {
@@ -21,6 +25,21 @@ QuantitySource independent(std::string_view parameter, double value) {
 
 QuantitySource unknown(std::string_view parameter) {
   return {EstimateSource::unknown, std::string(parameter)};
+}
+
+constexpr std::array<std::string_view, 2> kArduCompass{"COMPASS_ENABLE", "COMPASS_USE"};
+
+/// AHRS2's yaw as a heading (estimate_sources.hpp): DCM's, corrected by the compass when it is
+/// enabled and used for yaw.
+QuantitySource ardupilot_heading(const ParameterLookup& parameter) {
+  for (const std::string_view name : kArduCompass) {
+    const auto value = parameter(name);
+    if (!value) return unknown(name);
+    if (*value == 0) {
+      return {EstimateSource::none, std::string(name) + " = 0: AHRS2's yaw is the gyros' alone"};
+    }
+  }
+  return {EstimateSource::independent, std::string(kSecondHeadingName) + ", COMPASS_USE = 1"};
 }
 
 bool has_bit(double value, unsigned bit) {
@@ -43,7 +62,13 @@ EstimateSources ardupilot(SetupInput input, const ParameterLookup& parameter) {
   } else {
     s.position = unknown("EK3_SRC1_POSXY");
   }
+  if (s.yaw.source == EstimateSource::mocap) s.heading = ardupilot_heading(parameter);
+  if (s.yaw.source == EstimateSource::unknown) s.heading = unknown("EK3_SRC1_YAW");
   return s;
+}
+
+QuantitySource px4_no_heading() {
+  return {EstimateSource::none, "PX4 sends no heading but EKF2's over MAVLink"};
 }
 
 EstimateSources px4(const std::optional<FirmwareVersion>& version, SetupInput input,
@@ -62,9 +87,10 @@ EstimateSources px4(const std::optional<FirmwareVersion>& version, SetupInput in
     s.yaw = {EstimateSource::independent, "HIL_GPS carries no yaw"};
     return s;
   }
-  if (!value) return {unknown(name), unknown(name)};
+  if (!value) return {unknown(name), unknown(name), unknown(name)};
   s.yaw = has_bit(*value, yaw_bit) ? from_mocap(name, *value) : independent(name, *value);
   s.position = has_bit(*value, pos_bit) ? from_mocap(name, *value) : independent(name, *value);
+  if (s.yaw.source == EstimateSource::mocap) s.heading = px4_no_heading();
   return s;
 }
 
@@ -78,8 +104,20 @@ std::string_view to_string(EstimateSource source) {
       return "independent";
     case EstimateSource::mocap:
       return "mocap";
+    case EstimateSource::none:
+      return "none";
   }
   return "unknown";
+}
+
+bool checks_second_heading(const EstimateSources& sources) {
+  return sources.yaw.source == EstimateSource::mocap &&
+         sources.heading.source == EstimateSource::independent;
+}
+
+std::span<const std::string_view> source_parameters(AutopilotFamily autopilot) {
+  if (autopilot == AutopilotFamily::ardupilot) return kArduCompass;
+  return {};
 }
 
 EstimateSources estimate_sources(AutopilotFamily autopilot,
@@ -101,13 +139,14 @@ EstimateSources px4_dds_sources() {
   const QuantitySource assumed{EstimateSource::mocap,
                                "assumed: PX4 fuses the poses it is sent over uXRCE-DDS, and "
                                "EKF2_EV_CTRL cannot be read there"};
-  return {assumed, assumed};
+  return {assumed, assumed, px4_no_heading()};
 }
 
 std::optional<std::string> describe_unchecked(std::string_view what, const QuantitySource& source) {
   const std::string name(what);
   switch (source.source) {
     case EstimateSource::independent:
+    case EstimateSource::none:
       return std::nullopt;
     case EstimateSource::mocap:
       return name + " not checkable: the vehicle's " + name + " comes from mocap (" + source.basis +
@@ -124,7 +163,20 @@ std::optional<std::string> describe_unchecked(std::string_view what, const Quant
 }
 
 std::optional<std::string> describe_unchecked(const EstimateSources& sources) {
-  const auto yaw = describe_unchecked("yaw", sources.yaw);
+  std::optional<std::string> yaw = describe_unchecked("yaw", sources.yaw);
+  if (sources.yaw.source == EstimateSource::mocap) {
+    const QuantitySource& h = sources.heading;
+    char limit[16];
+    std::snprintf(limit, sizeof limit, "%g", kMaxHeadingOffsetDeg);
+    if (h.source == EstimateSource::independent) {
+      yaw = "yaw checked against " + std::string(kSecondHeadingName) + " only, within " + limit +
+            "°: the vehicle's yaw comes from mocap (" + sources.yaw.basis + ")";
+    } else if (h.source == EstimateSource::none && !h.basis.empty()) {
+      *yaw += ", and it has no heading of its own (" + h.basis + "): the nose is unchecked";
+    } else if (h.source == EstimateSource::unknown) {
+      *yaw += "; its own heading not known yet: " + h.basis + " not read from the vehicle";
+    }
+  }
   const auto position = describe_unchecked("position", sources.position);
   if (yaw && position) return *yaw + "; " + *position;
   return yaw ? yaw : position;

@@ -202,11 +202,12 @@ double link_bytes_per_second(const MessageSet& messages, double rate_hz, bool si
   // From the vehicle: ATTITUDE and LOCAL_POSITION_NED at the rate the agreement check asks for
   // (vehicle_streams.hpp). A UART carries each direction on its own wire, but a telemetry radio
   // shares one air channel between both, so the bound counts them (signed like ours).
-  // And the estimator's health the set-up list asks for at 1 Hz (the larger of ArduPilot's and
-  // PX4's message).
+  // AHRS2 at that rate too, asked only of an ArduPilot whose yaw is mocap's (an upper bound
+  // counts it). And the estimator's health the set-up list asks for at 1 Hz (the larger of
+  // ArduPilot's and PX4's message).
   const double requested =
-      static_cast<double>(2 * frame + mavlink::Attitude::kMaxLength +
-                          mavlink::LocalPositionNed::kMaxLength) *
+      static_cast<double>(3 * frame + mavlink::Attitude::kMaxLength +
+                          mavlink::LocalPositionNed::kMaxLength + mavlink::Ahrs2::kMaxLength) *
           kStreamRateHz +
       static_cast<double>(frame + std::max(mavlink::EkfStatusReport::kMaxLength,
                                            mavlink::EstimatorStatus::kMaxLength)) *
@@ -225,11 +226,11 @@ std::optional<std::string> serial_bandwidth_warning(Profile profile, const Messa
   const double available = serial_bytes_per_second(baud);
   if (needed <= available) return std::nullopt;
   // autopilots.md §7: a full ODOMETRY frame is 245 bytes; 57600 baud carries ~23/s.
-  char text[256];
+  char text[320];
   std::snprintf(text, sizeof text,
-                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's ATTITUDE "
-                "and LOCAL_POSITION_NED at %g Hz and its estimator status at 1 Hz) but %u baud "
-                "carries %.0f: frames will be dropped; lower rate_hz or raise the baud rate",
+                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's ATTITUDE, "
+                "LOCAL_POSITION_NED and AHRS2 at %g Hz and its estimator status at 1 Hz) but %u "
+                "baud carries %.0f: frames will be dropped; lower rate_hz or raise the baud rate",
                 static_cast<int>(to_string(profile).size()), to_string(profile).data(), rate_hz,
                 needed, kStreamRateHz, baud, available);
   return std::string(text);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "mocaplink/core/estimate_sources.hpp"
 #include "mocaplink/mavlink/enums.hpp"
 
 namespace mocaplink::core {
@@ -207,18 +208,22 @@ void VehicleSetup::set_messages(MessageSet messages) {
 void VehicleSetup::choose_rules() {
   rules_ = rules_for(family_, version_, setup_input(family_, messages_));
   std::vector<Param> params;
-  for (const SetupRule* rule : rules_) {
-    const auto same = [&](const Param& p) { return p.name == rule->parameter; };
-    if (std::any_of(params.begin(), params.end(), same)) continue;
+  const auto add = [&](std::string_view name) {
+    const auto same = [&](const Param& p) { return p.name == name; };
+    if (std::any_of(params.begin(), params.end(), same)) return;
     const auto old = std::find_if(params_.begin(), params_.end(), same);
     if (old != params_.end()) {
       params.push_back(*old);
     } else {
       Param fresh;
-      fresh.name = std::string(rule->parameter);
+      fresh.name = std::string(name);
       params.push_back(std::move(fresh));
     }
-  }
+  };
+  for (const SetupRule* rule : rules_) add(rule->parameter);
+  // Read too, with no line of their own: what the agreement check's sources need
+  // (estimate_sources.hpp, the second heading).
+  for (const std::string_view name : source_parameters(family_)) add(name);
   params_ = std::move(params);
   reading_.reset();
   writing_.reset();

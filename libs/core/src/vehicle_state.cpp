@@ -126,14 +126,27 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
     on_heartbeat(message, now, reaction);
   } else if (const auto* origin = std::get_if<mavlink::GpsGlobalOrigin>(&message.message)) {
     on_origin(*origin, reaction);
+  } else if (const auto* ahrs2 = std::get_if<mavlink::Ahrs2>(&message.message)) {
+    if (std::isfinite(ahrs2->yaw)) {
+      ahrs2_yaw_rad_ = ahrs2->yaw;
+      ahrs2_received_ = now;
+    }
   } else if (const auto* att = std::get_if<mavlink::Attitude>(&message.message)) {
     if (settled(att->time_boot_ms, now, reaction) && mocap != nullptr &&
         mocap->state == TrackingState::tracking && std::isfinite(att->yaw)) {
       const double mocap_yaw = euler_321_from_quaternion(mocap->q_ned_frd).yaw_rad;
-      const double diff_rad = static_cast<double>(att->yaw) - mocap_yaw;
-      const double offset = wrap_deg_180(diff_rad * 180.0 / std::numbers::pi);
+      const auto offset_deg = [&](double yaw_rad) {
+        return wrap_deg_180((yaw_rad - mocap_yaw) * 180.0 / std::numbers::pi);
+      };
+      const double offset = offset_deg(att->yaw);
       const double tilt = tilt_offset_deg(mocap->q_ned_frd, att->roll, att->pitch);
       if (std::isfinite(offset)) vehicle_yaw_offset_deg_ = offset;
+      vehicle_heading_offset_deg_.reset();
+      agreement_.heading_rad.reset();
+      if (heading_wanted() && ahrs2_received_ && now - *ahrs2_received_ <= kHeadingFresh) {
+        vehicle_heading_offset_deg_ = offset_deg(*ahrs2_yaw_rad_);
+        agreement_.heading_rad = ahrs2_yaw_rad_;
+      }
       if (std::isfinite(tilt)) {
         vehicle_tilt_offset_deg_ = tilt;
         agreement_.roll_rad = att->roll;
@@ -256,7 +269,10 @@ bool VehicleState::settled(std::uint32_t time_boot_ms, HostTime now, VehicleReac
   vehicle_yaw_offset_deg_.reset();
   vehicle_position_offset_m_.reset();
   vehicle_tilt_offset_deg_.reset();
+  vehicle_heading_offset_deg_.reset();
   agreement_.tilt_offset_deg.reset();
+  agreement_.heading_offset_deg.reset();
+  agreement_.heading_rad.reset();
   agreement_.yaw_offset_deg.reset();
   agreement_.position_offset_m.reset();
   agreement_.disagreeing_since.reset();
@@ -281,7 +297,9 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
       vehicle_position_offset_m_ && *vehicle_position_offset_m_ > t.max_position_offset_m;
   const bool tilt_bad =
       vehicle_tilt_offset_deg_ && *vehicle_tilt_offset_deg_ > t.max_tilt_offset_deg;
-  if (yaw_bad || pos_bad || tilt_bad) {
+  const bool heading_bad = vehicle_heading_offset_deg_ &&
+                           std::abs(*vehicle_heading_offset_deg_) > t.max_heading_offset_deg;
+  if (yaw_bad || pos_bad || tilt_bad || heading_bad) {
     // Disagree only once it has lasted kAgreementHold; unknown until then (header comment).
     if (!agreement_.disagreeing_since) agreement_.disagreeing_since = now;
     if (now - *agreement_.disagreeing_since >= kAgreementHold) {
@@ -292,21 +310,29 @@ void VehicleState::update_agreement(HostTime now, VehicleReaction& reaction) {
     // Mocap compared with itself agrees whatever the axes: an agreement needs to know that
     // (estimate_sources.hpp), and what comes from mocap is named unchecked, not agreed.
     const bool sources_known = agreement_.sources.yaw.source != EstimateSource::unknown &&
-                               agreement_.sources.position.source != EstimateSource::unknown;
+                               agreement_.sources.position.source != EstimateSource::unknown &&
+                               agreement_.sources.heading.source != EstimateSource::unknown;
+    // A heading of the vehicle's own, where it has one, is the only check of the nose.
+    const bool heading_known = !heading_wanted() || vehicle_heading_offset_deg_.has_value();
     if (vehicle_tilt_offset_deg_ && vehicle_yaw_offset_deg_ && vehicle_position_offset_m_ &&
-        sources_known) {
+        sources_known && heading_known) {
       verdict = AgreementVerdict::agree;
     }
   }
   agreement_.tilt_offset_deg = vehicle_tilt_offset_deg_;
   agreement_.yaw_offset_deg = vehicle_yaw_offset_deg_;
   agreement_.position_offset_m = vehicle_position_offset_m_;
+  agreement_.heading_offset_deg = vehicle_heading_offset_deg_;
   agreement_.updated = now;
   if (verdict != agreement_.verdict) {
     agreement_.verdict = verdict;
     agreement_.fix.reset();
     reaction.agreement_changed = true;
   }
+}
+
+bool VehicleState::heading_wanted() const {
+  return checks_second_heading(agreement_.sources);
 }
 
 void VehicleState::set_axis_fix(AxisFix fix) {
@@ -317,6 +343,10 @@ VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& source
   VehicleReaction reaction;
   if (sources == agreement_.sources) return reaction;
   agreement_.sources = sources;
+  if (!heading_wanted()) {
+    vehicle_heading_offset_deg_.reset();
+    agreement_.heading_rad.reset();
+  }
   if (vehicle_tilt_offset_deg_ || vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) {
     update_agreement(now, reaction);
   }

@@ -1,6 +1,6 @@
-// VehicleStreams (vehicle_streams.hpp): asks for ATTITUDE, LOCAL_POSITION_NED and the estimator's
-// health, confirms,
-// retries, falls back to REQUEST_DATA_STREAM on ArduPilot, asks again after a reboot.
+// VehicleStreams (vehicle_streams.hpp): asks for ATTITUDE, LOCAL_POSITION_NED, the estimator's
+// health and AHRS2, confirms, retries, falls back to REQUEST_DATA_STREAM on ArduPilot, asks again
+// after a reboot.
 #include "mocaplink/core/vehicle_streams.hpp"
 
 #include <algorithm>
@@ -59,6 +59,8 @@ StreamFacts facts(VehicleStream stream, std::uint8_t autopilot) {
       return {mavlink::Attitude::kName, mavlink::Attitude::kId, 10, "EXTRA1"};
     case VehicleStream::local_position_ned:
       return {mavlink::LocalPositionNed::kName, mavlink::LocalPositionNed::kId, 6, "POSITION"};
+    case VehicleStream::heading:
+      return {mavlink::Ahrs2::kName, mavlink::Ahrs2::kId, 12, "EXTRA3"};
     case VehicleStream::estimator:
       break;
   }
@@ -89,8 +91,16 @@ std::string_view data_stream_name(VehicleStream stream) {
 }
 
 bool asked_of(VehicleStream stream, std::uint8_t autopilot) {
-  return stream != VehicleStream::estimator || autopilot == kMavAutopilotArdupilot ||
-         autopilot == kMavAutopilotPx4;
+  switch (stream) {
+    case VehicleStream::estimator:
+      return autopilot == kMavAutopilotArdupilot || autopilot == kMavAutopilotPx4;
+    case VehicleStream::heading:
+      return autopilot == kMavAutopilotArdupilot;
+    case VehicleStream::attitude:
+    case VehicleStream::local_position_ned:
+      break;
+  }
+  return true;
 }
 
 double rate_hz(VehicleStream stream) {
@@ -139,6 +149,7 @@ std::optional<std::string> describe_missing(VehicleStream stream, const StreamSt
     case StreamState::refused:
       return refusal(stream, s.ack_result, autopilot) + ": no " + name +
              (stream == VehicleStream::estimator ? ", so the estimator's flags are unknown"
+              : stream == VehicleStream::heading ? ", so the nose cannot be checked"
                                                  : ", so the agreement cannot be checked") +
              " (asked again after a reboot)";
     case StreamState::silent:
@@ -151,7 +162,7 @@ std::optional<std::string> describe_missing(VehicleStream stream, const StreamSt
                "origin (a GPS fix, or SET_GPS_GLOBAL_ORIGIN) and a position source (see the "
                "set-up list); if ATTITUDE is missing too, is this port's MAVLink enabled?";
       }
-      if (stream == VehicleStream::estimator) {
+      if (stream == VehicleStream::estimator || stream == VehicleStream::heading) {
         return "no " + name +
                " from the vehicle after asking: its firmware may not send it on this port";
       }
@@ -183,6 +194,8 @@ void VehicleStreams::on_message(const ReceivedMessage& message, HostTime now,
              std::holds_alternative<mavlink::EstimatorStatus>(message.message)) {
     // Either autopilot's: arriving is arriving, whichever was asked for.
     arrived(VehicleStream::estimator, now, notes);
+  } else if (std::holds_alternative<mavlink::Ahrs2>(message.message)) {
+    arrived(VehicleStream::heading, now, notes);
   } else if (const auto* ack = std::get_if<mavlink::CommandAck>(&message.message)) {
     on_ack(*ack, now, notes);
   } else if (const auto* ts = std::get_if<mavlink::Timesync>(&message.message)) {
@@ -293,10 +306,15 @@ void VehicleStreams::tick_stream(VehicleStream s, HostTime now, std::vector<mavl
   };
   switch (st.state) {
     case StreamState::idle:
-      if (now - *alive_since_ >= kStreamGrace && asked_of(s, target_.autopilot)) start_round();
+      if (now - *alive_since_ >= kStreamGrace && asked_of(s, target_.autopilot) &&
+          (s != VehicleStream::heading || target_.want_heading)) {
+        start_round();
+      }
       break;
     case StreamState::arriving:
       // Counted from the heartbeat's return too: a link that was silent gets its chance first.
+      // AHRS2 no longer wanted is not asked for again.
+      if (s == VehicleStream::heading && !target_.want_heading) break;
       if (st.last_seen && now - std::max(*st.last_seen, *alive_since_) >= kStreamStaleAfter) {
         notes.push_back(std::string(mavlink_name(s, target_.autopilot)) +
                         " stopped arriving; asking again");

@@ -118,6 +118,7 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
                                      {"tilt_offset_deg", 1.5},
                                      {"yaw_offset_deg", 0.4},
                                      {"position_offset_m", 0.012},
+                                     {"heading_offset_deg", nullptr},
                                      {"reason", nullptr},
                                      {"fix", nullptr}}));
   const json& rover = s["vehicles"][1];

@@ -8,19 +8,28 @@
 //   mistake `up = "+y"` (the OptiTrack habit): tilt offset near 90°, `disagree`, the
 //           agreement_failing alert, and the fix `[mocap] up = "+z"` in agreement.fix, the reason
 //           and the log line; poses keep flowing.
+//   nose    `body_forward = "+y"` (a body created nose-left): tilt and the fed-back yaw agree,
+//           the compass does not: the vehicle has one (COMPASS_ENABLE = COMPASS_USE = 1), so
+//           mocaplink asks for AHRS2 with SET_MESSAGE_INTERVAL, which this vehicle then sends
+//           with the body's true heading (DCM's compass heading on ArduPilot): heading offset
+//           near 90°, `disagree`, and the fix `[[vehicle]] body_forward = "+x"`.
+// The heading, like the tilt, is the raw quaternion turned into NED here by hand.
 'use strict';
 
 const fs = require('node:fs');
 const path = require('node:path');
-const { MavLinkProtocolV2, common, minimal } = require('node-mavlink');
+const { MavLinkProtocolV2, ardupilotmega, common, minimal } = require('node-mavlink');
 const h = require('./harness');
 
 const { assert, ID } = h;
 const PARAM_REQUEST_READ = 20;
 const EXTERNAL_NAV = ['EK3_SRC1_YAW', 'EK3_SRC1_POSXY'];
+const COMPASS = ['COMPASS_ENABLE', 'COMPASS_USE'];
+const SET_MESSAGE_INTERVAL = 511;
+const AHRS2 = 178;
 
-/// Roll and pitch (rad) of the NED/FRD attitude of a raw Z-up, FLU quaternion [w, x, y, z].
-function trueTilt([w, x, y, z]) {
+/// Roll, pitch and yaw (rad) of the NED/FRD attitude of a raw Z-up, FLU quaternion [w, x, y, z].
+function trueAttitude([w, x, y, z]) {
   // Rows of R_raw (body → world), then R = diag(1,−1,−1) · R_raw · diag(1,−1,−1).
   const r = [
     [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
@@ -29,24 +38,50 @@ function trueTilt([w, x, y, z]) {
   ];
   const s = [1, -1, -1];
   const m = r.map((row, i) => row.map((v, j) => s[i] * v * s[j]));
-  return { roll: Math.atan2(m[2][1], m[2][2]), pitch: -Math.asin(Math.max(-1, Math.min(1, m[2][0]))) };
+  return {
+    roll: Math.atan2(m[2][1], m[2][2]),
+    pitch: -Math.asin(Math.max(-1, Math.min(1, m[2][0]))),
+    yaw: Math.atan2(m[1][0], m[0][0]),
+  };
 }
 
 /// The scripted ArduCopter: heartbeat 2 Hz, ATTITUDE and LOCAL_POSITION_NED at 5 Hz unasked,
-/// parameter reads answered (EXTERNAL_NAV 6, the rest 0). `truth()` gives the body's raw q.
-function externalNavVehicle(vehicle, sysid, truth) {
-  const s = { odometry: null };
+/// parameter reads answered (EXTERNAL_NAV 6, COMPASS 1, the rest 0), SET_MESSAGE_INTERVAL
+/// accepted, and AHRS2 (its compass heading: the truth's) sent at 5 Hz once asked for. `truth()`
+/// gives the body's raw q.
+/// With `px4`, a PX4 instead (autopilot 12) whose EKF2 fuses vision position and velocity but takes
+/// its yaw from the magnetometer (EKF2_EV_CTRL 7, answered bytewise as PX4 does): its ATTITUDE yaw
+/// is then the truth's, and it has no AHRS2.
+function externalNavVehicle(vehicle, sysid, truth, { px4 = false } = {}) {
+  const s = { odometry: null, ahrs2Asked: 0 };
   let seq = 0;
   const send = (m) => vehicle.send(new MavLinkProtocolV2(sysid, 1).serialize(m, seq++ & 255));
   const bootStart = performance.now() - 60000;  // up for a minute: settled
   vehicle.decoder.parser.on('data', (packet) => {
     const m = h.decode(packet);
     if (packet.header.msgid === ID.ODOMETRY) s.odometry = m;
+    if (packet.header.msgid === ID.COMMAND_LONG && m.command === SET_MESSAGE_INTERVAL
+        && m.targetSystem === sysid) {
+      const a = new common.CommandAck();
+      a.command = SET_MESSAGE_INTERVAL;
+      a.result = 0;  // ACCEPTED
+      a.targetSystem = packet.header.sysid;
+      a.targetComponent = packet.header.compid;
+      send(a);
+      if (Math.round(m._param1) === AHRS2) s.ahrs2Asked += 1;
+    }
     if (packet.header.msgid === PARAM_REQUEST_READ && m.targetSystem === sysid) {
       const v = new common.ParamValue();
       v.paramId = m.paramId.replace(/\0+$/, '');
-      v.paramType = 2;  // INT8, the value cast to float as ArduPilot sends it
-      v.paramValue = EXTERNAL_NAV.includes(v.paramId) ? 6 : 0;
+      if (px4) {
+        const bits = Buffer.alloc(4);
+        bits.writeInt32LE(v.paramId === 'EKF2_EV_CTRL' ? 7 : 0);
+        v.paramType = 6;  // INT32, its bytes in the float (PX4's bytewise encoding)
+        v.paramValue = bits.readFloatLE(0);
+      } else {
+        v.paramType = 2;  // INT8, the value cast to float as ArduPilot sends it
+        v.paramValue = EXTERNAL_NAV.includes(v.paramId) ? 6 : COMPASS.includes(v.paramId) ? 1 : 0;
+      }
       v.paramCount = 1;
       v.paramIndex = 65535;
       send(v);
@@ -54,7 +89,7 @@ function externalNavVehicle(vehicle, sysid, truth) {
   });
   const heartbeat = new minimal.Heartbeat();
   heartbeat.type = 2;
-  heartbeat.autopilot = 3;
+  heartbeat.autopilot = px4 ? 12 : 3;
   heartbeat.systemStatus = 3;
   heartbeat.mavlinkVersion = 3;
   let n = 0;
@@ -66,12 +101,20 @@ function externalNavVehicle(vehicle, sysid, truth) {
     if (!o || !q) return;
     const bootMs = Math.round(performance.now() - bootStart);
     const [w, x, y, z] = o.q;
-    const { roll, pitch } = trueTilt(q);
+    const { roll, pitch, yaw } = trueAttitude(q);
+    if (s.ahrs2Asked > 0 && !px4) {
+      const c = new ardupilotmega.Ahrs2();
+      c.roll = roll;
+      c.pitch = pitch;
+      c.yaw = yaw;  // DCM's, from the compass: the body's true heading
+      send(c);
+    }
     const a = new common.Attitude();
     a.timeBootMs = bootMs;
     a.roll = roll;
     a.pitch = pitch;
-    a.yaw = Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));  // mocap's, fed back
+    // ArduPilot: mocap's, fed back; PX4: its magnetometer's, the truth.
+    a.yaw = px4 ? yaw : Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
     send(a);
     const p = new common.LocalPositionNed();
     p.timeBootMs = bootMs;
@@ -83,11 +126,12 @@ function externalNavVehicle(vehicle, sysid, truth) {
   return s;
 }
 
-async function session(dir, up) {
+async function session(dir, name, up, vehicleKeys = {}, { px4 = false } = {}) {
   const link = await new h.UdpVehicle().bind();
-  const config = h.writeConfig(path.join(dir, `up${up === '+z' ? 'z' : 'y'}.toml`),
+  const config = h.writeConfig(path.join(dir, `${name}.toml`),
     'sim://?bodies=1&rate_hz=100', [{ name: 'quad', body: 'Body1',
-      link: `udp://127.0.0.1:${link.port}`, system_id: 1, profile: 'ardupilot', rate_hz: 30 }],
+      link: `udp://127.0.0.1:${link.port}`, system_id: 1, profile: px4 ? 'px4' : 'ardupilot', rate_hz: 30,
+      ...vehicleKeys }],
     `up = "${up}"`);
   // A fixed dashboard port: `vehicle setup` with this configuration asks the running daemon.
   const httpPort = await h.freeTcpPort();
@@ -103,7 +147,7 @@ async function session(dir, up) {
     } catch { /* the daemon stopping */ }
   }, 50);
   await h.waitFor(() => link.peer !== undefined, 10000, 'first datagrams');
-  const quad = externalNavVehicle(link, 1, () => truth);
+  const quad = externalNavVehicle(link, 1, () => truth, { px4 });
   const done = async () => {
     clearInterval(quad.timer);
     clearInterval(poll);
@@ -122,21 +166,28 @@ async function session(dir, up) {
     }
     assert.fail(`no ${want} in ${ms} ms: ${JSON.stringify(q.agreement)}\n${run.stderr}`);
   };
-  return { run, api, verdict, done, config };
+  return { run, api, verdict, done, config, quad };
 }
 
-const NOT_CHECKABLE = "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); "
-  + "position not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
+const NOT_CHECKABLE = 'yaw checked against AHRS2 (DCM with the compass) only, within 45°: the '
+  + "vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not checkable: the vehicle's "
+  + 'position comes from mocap (EK3_SRC1_POSXY = 6)';
 
 async function main() {
   const dir = h.tempDir('agreement-axes');
-  const right = await session(dir, '+z');
-  const mistake = await session(dir, '+y');
+  const right = await session(dir, 'right', '+z');
+  const mistake = await session(dir, 'up', '+y');
+  const nose = await session(dir, 'nose', '+z', { body_forward: '+y' });
+  const bodyUp = await session(dir, 'bodyup', '+z', { body_up: '+y' });
+  const px4Nose = await session(dir, 'px4nose', '+z', { body_forward: '+y' }, { px4: true });
   try {
     const ok = await right.verdict('agree', 20000);
     assert.ok(ok.agreement.tilt_offset_deg < 5, JSON.stringify(ok.agreement));
+    assert.ok(Math.abs(ok.agreement.heading_offset_deg) < 10, JSON.stringify(ok.agreement));
     assert.equal(ok.agreement.reason, NOT_CHECKABLE);
     assert.equal(ok.agreement.fix, null);
+    assert.equal(ok.streams.AHRS2, 'arriving', JSON.stringify(ok.streams));
+    assert.ok(right.quad.ahrs2Asked >= 1);
 
     const bad = await mistake.verdict('disagree', 25000,
       (ag) => typeof ag.reason === 'string' && ag.reason.endsWith(NOT_CHECKABLE));
@@ -146,6 +197,11 @@ async function main() {
     assert.equal(a.fix.kind, 'fix', JSON.stringify(a.fix));
     assert.deepEqual(a.fix.lines, ['[mocap] up = "+z"'], JSON.stringify(a.fix));
     assert.ok(a.fix.tilt_residual_deg < 5, JSON.stringify(a.fix));
+    // Named again once AHRS2 arrived: the nose is checked too (a wrong `up` leaves it right).
+    await mistake.verdict('disagree', 5000, (ag) => ag.fix && ag.fix.heading_residual_deg !== null);
+    const withHeading = (await mistake.api('GET', '/api/status')).json.vehicles[0].agreement.fix;
+    assert.deepEqual(withHeading.lines, ['[mocap] up = "+z"'], JSON.stringify(withHeading));
+    assert.ok(withHeading.heading_residual_deg < 10, JSON.stringify(withHeading));
     assert.ok(a.reason.startsWith('fix: [mocap] up = "+z" (then tilt '), a.reason);
     assert.ok(a.reason.endsWith(NOT_CHECKABLE), a.reason);
     const alerts = (await mistake.api('GET', '/api/status')).json.alerts;
@@ -154,7 +210,7 @@ async function main() {
     // `vehicle setup` names the same fix, through the running daemon.
     const setup = h.mocaplink(['vehicle', 'setup', '--config', mistake.config, 'quad', '--timeout', '20']);
     await setup.exited;
-    assert.match(setup.stdout, /^ {2}agreement: disagree \(tilt [0-9.]+ deg, yaw -?[0-9.e-]+ deg, position [0-9.e-]+ m\)\n {4}fix: \[mocap\] up = "\+z"\n/m,
+    assert.match(setup.stdout, /^ {2}agreement: disagree \(tilt [0-9.]+ deg, yaw -?[0-9.e-]+ deg, position [0-9.e-]+ m, compass -?[0-9.]+ deg\)\n {4}fix: \[mocap\] up = "\+z"\n/m,
       `${setup.stdout}\n${setup.stderr}`);
     console.log(setup.stdout.split('\n').filter((l) => /agreement:|fix:/.test(l)).join('\n'));
     // It refuses nothing new: poses keep flowing.
@@ -162,11 +218,40 @@ async function main() {
     await h.sleep(500);
     const later = (await mistake.api('GET', '/api/status')).json.vehicles[0].sent.ODOMETRY;
     assert.ok(later > sent, `ODOMETRY ${sent} → ${later}`);
-    console.log(`ok: right axes agree (tilt ${ok.agreement.tilt_offset_deg.toFixed(1)}°); up = "+y" `
-      + `disagrees (tilt ${a.tilt_offset_deg.toFixed(1)}°) with ${a.fix.text}`);
+    // The nose: only the compass sees it.
+    const turned = await nose.verdict('disagree', 25000,
+      (ag) => ag.fix !== null && typeof ag.reason === 'string' && ag.reason.endsWith(NOT_CHECKABLE));
+    const n = turned.agreement;
+    assert.ok(n.tilt_offset_deg < 5, JSON.stringify(n));
+    assert.ok(Math.abs(n.yaw_offset_deg) < 5, JSON.stringify(n));  // mocap against itself
+    assert.ok(Math.abs(Math.abs(n.heading_offset_deg) - 90) < 10, JSON.stringify(n));
+    assert.equal(n.fix.kind, 'fix', JSON.stringify(n.fix));
+    assert.deepEqual(n.fix.lines, ['[[vehicle]] body_forward = "+x"'], JSON.stringify(n.fix));
+    assert.ok(n.fix.heading_residual_deg < 10, JSON.stringify(n.fix));
+    await h.waitForLog(nose.run, /agreement quad: estimate disagrees, tilt offset [0-9.]+ deg, yaw offset -?[0-9.e-]+ deg, position offset [0-9.e-]+ m, heading offset -?[0-9.]+ deg \(AHRS2\); fix: \[\[vehicle\]\] body_forward = "\+x"/, 5000);
+    // A body defined lying on its side: gravity sees it.
+    const side = (await bodyUp.verdict('disagree', 25000, (ag) => ag.fix !== null
+      && ag.fix.heading_residual_deg !== null)).agreement;
+    assert.ok(Math.abs(side.tilt_offset_deg - 90) < 10, JSON.stringify(side));
+    assert.deepEqual(side.fix.lines, ['[[vehicle]] body_up = "+z"'], JSON.stringify(side.fix));
+    // PX4 with magnetometer yaw: its own yaw is the heading, the nose mistake is a yaw offset.
+    const px4Turned = (await px4Nose.verdict('disagree', 25000, (ag) => ag.fix !== null)).agreement;
+    assert.ok(Math.abs(Math.abs(px4Turned.yaw_offset_deg) - 90) < 10, JSON.stringify(px4Turned));
+    assert.equal(px4Turned.heading_offset_deg, null, JSON.stringify(px4Turned));
+    assert.deepEqual(px4Turned.fix.lines, ['[[vehicle]] body_forward = "+x"'], JSON.stringify(px4Turned.fix));
+    assert.ok(px4Turned.reason.endsWith('position not checkable: the vehicle\'s position comes from '
+      + 'mocap (EKF2_EV_CTRL = 7)'), px4Turned.reason);
+    assert.equal(px4Nose.quad.ahrs2Asked, 0);  // never asked of PX4
+    console.log(`ok: right axes agree (tilt ${ok.agreement.tilt_offset_deg.toFixed(1)}°, compass `
+      + `${ok.agreement.heading_offset_deg.toFixed(1)}°); up = "+y" disagrees (tilt `
+      + `${a.tilt_offset_deg.toFixed(1)}°) with ${a.fix.text}; body_forward = "+y" disagrees `
+      + `(compass ${n.heading_offset_deg.toFixed(1)}°) with ${n.fix.text}`);
   } finally {
     await right.done();
     await mistake.done();
+    await nose.done();
+    await bodyUp.done();
+    await px4Nose.done();
   }
 }
 

@@ -146,11 +146,13 @@ TEST(AxisFix, NoseNinetyDegreesOffIsNamedWithAHeading) {
   EXPECT_EQ(fix.lines, (std::vector<std::string>{"[[vehicle]] body_forward = \"-y\""}));
   ASSERT_TRUE(fix.heading_residual_deg);
   EXPECT_NEAR(*fix.heading_residual_deg, 0.0, 1e-9);
-  // Turning the arena's north onto the body's +x fits this pose as well: named second.
+  // Turning the arena's north onto the body's +x fits as well, at this pose and at every other
+  // one at rest (a turn about the vertical): named second, as the arena's possibility.
   EXPECT_EQ(fix.alternative_lines, (std::vector<std::string>{"[mocap] north = \"+y\""}));
   EXPECT_EQ(fix.text,
-            "fix: [[vehicle]] body_forward = \"-y\" (then tilt 0.0°, heading 0.0°); or, as well "
-            "at this pose: [mocap] north = \"+y\"");
+            "fix: [[vehicle]] body_forward = \"-y\" (then tilt 0.0°, heading 0.0°); or, if it is "
+            "the arena's north that is turned (no pose at rest tells the two apart): [mocap] "
+            "north = \"+y\"");
   // Without a heading the mistake is invisible at rest: the settings "agree", nose unchecked.
   const auto blind = find_axis_fix(sideways, current, kLevel, axis::pos_z);
   EXPECT_EQ(blind.kind, AxisFixKind::agrees);

@@ -523,6 +523,7 @@ std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_vie
         mavlink::ParamValue v;
         v.param_id = r->param_id;
         v.param_type = 2;  // INT8, the value cast to float (ArduPilot)
+        // Every other parameter 0: COMPASS_ENABLE too, so there is no heading of its own.
         v.param_value = name == "EK3_SRC1_YAW" || name == "EK3_SRC1_POSXY" ? 6.0F : 0.0F;
         keep(bridge.on_vehicle_message(0, {1, 1, v}, now));
       }
@@ -546,8 +547,9 @@ TEST(BridgeVehicles, AnUpAxisMistakeWithExternalNavYawDisagreesAndNamesTheFix) {
   const std::string tail =
       "; fix: [mocap] up = \"+z\" (then tilt 0.0°, nose unchecked: the vehicle has no heading of "
       "its own); or, as well at this pose: [[vehicle]] body_up = \"+y\"; yaw not checkable: the "
-      "vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not checkable: the vehicle's "
-      "position comes from mocap (EK3_SRC1_POSXY = 6)";
+      "vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has no heading of its own "
+      "(COMPASS_ENABLE = 0: AHRS2's yaw is the gyros' alone): the nose is unchecked; position "
+      "not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
   ASSERT_GE(last.size(), tail.size());
   EXPECT_EQ(last.substr(last.size() - tail.size()), tail) << last;
 }
@@ -559,8 +561,10 @@ TEST(BridgeVehicles, TheRightAxesWithExternalNavAgreeOnGravityAlone) {
   EXPECT_FALSE(agreement.fix);
   ASSERT_FALSE(events.empty());
   const std::string tail =
-      "; yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
-      "checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
+      "; yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has no "
+      "heading of its own (COMPASS_ENABLE = 0: AHRS2's yaw is the gyros' alone): the nose is "
+      "unchecked; position not checkable: the vehicle's position comes from mocap "
+      "(EK3_SRC1_POSXY = 6)";
   const std::string& last = events.back();
   EXPECT_EQ(last.rfind("estimate agrees, tilt offset 0.", 0), 0U) << last;
   ASSERT_GE(last.size(), tail.size());

@@ -63,6 +63,57 @@ TEST(EstimateSources, UnreadParametersAreUnknownAndSaySo) {
             "set-up rules for its autopilot)");
 }
 
+TEST(EstimateSources, ArduPilotAhrs2IsAHeadingOfItsOwnOnlyWithTheCompassInUse) {
+  // Issue 48: AHRS2 is DCM's attitude while EKF3 is active, and DCM corrects its yaw with the
+  // compass when COMPASS_ENABLE and COMPASS_USE are set (AP_AHRS_DCM::use_compass, 4.5).
+  const auto with = [](std::map<std::string, double> compass) {
+    compass.emplace("EK3_SRC1_YAW", 6);
+    compass.emplace("EK3_SRC1_POSXY", 6);
+    return estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision,
+                            params(std::move(compass)));
+  };
+  const auto in_use = with({{"COMPASS_ENABLE", 1}, {"COMPASS_USE", 1}});
+  EXPECT_EQ(in_use.heading.source, EstimateSource::independent);
+  EXPECT_TRUE(checks_second_heading(in_use));
+  EXPECT_EQ(describe_unchecked(in_use),
+            "yaw checked against AHRS2 (DCM with the compass) only, within 45°: the vehicle's "
+            "yaw comes from mocap (EK3_SRC1_YAW = 6); position not checkable: the vehicle's "
+            "position comes from mocap (EK3_SRC1_POSXY = 6)");
+  const auto unused = with({{"COMPASS_ENABLE", 1}, {"COMPASS_USE", 0}});
+  EXPECT_EQ(unused.heading, (QuantitySource{EstimateSource::none,
+                                            "COMPASS_USE = 0: AHRS2's yaw is the gyros' alone"}));
+  EXPECT_FALSE(checks_second_heading(unused));
+  EXPECT_EQ(describe_unchecked(unused),
+            "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has "
+            "no heading of its own (COMPASS_USE = 0: AHRS2's yaw is the gyros' alone): the nose "
+            "is unchecked; position not checkable: the vehicle's position comes from mocap "
+            "(EK3_SRC1_POSXY = 6)");
+  const auto disabled = with({{"COMPASS_ENABLE", 0}, {"COMPASS_USE", 1}});
+  EXPECT_EQ(disabled.heading.source, EstimateSource::none);
+  const auto unread = with({{"COMPASS_USE", 1}});
+  EXPECT_EQ(unread.heading, (QuantitySource{EstimateSource::unknown, "COMPASS_ENABLE"}));
+  EXPECT_FALSE(checks_second_heading(unread));
+  // A yaw of the vehicle's own (compass yaw) needs no second heading.
+  const auto compass_yaw =
+      estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision,
+                       params({{"EK3_SRC1_YAW", 1}, {"COMPASS_ENABLE", 1}, {"COMPASS_USE", 1}}));
+  EXPECT_EQ(compass_yaw.heading.source, EstimateSource::none);
+  EXPECT_FALSE(checks_second_heading(compass_yaw));
+  ASSERT_EQ(source_parameters(AutopilotFamily::ardupilot).size(), 2U);
+  EXPECT_EQ(source_parameters(AutopilotFamily::ardupilot)[1], "COMPASS_USE");
+  EXPECT_TRUE(source_parameters(AutopilotFamily::px4).empty());
+}
+
+TEST(EstimateSources, Px4HasNoSecondHeading) {
+  const auto s = estimate_sources(AutopilotFamily::px4, FirmwareVersion{1, 14, 3, 0},
+                                  SetupInput::vision, params({{"EKF2_EV_CTRL", 15}}));
+  EXPECT_EQ(s.heading.source, EstimateSource::none);
+  EXPECT_NE(describe_unchecked(s).value().find("no heading of its own (PX4 sends no heading "
+                                               "but EKF2's over MAVLink): the nose is unchecked"),
+            std::string::npos);
+  EXPECT_EQ(px4_dds_sources().heading.source, EstimateSource::none);
+}
+
 TEST(EstimateSources, Px4EvCtrlBits) {
   const FirmwareVersion v1_15{1, 15, 0, 0};
   // 15 = horizontal position 1 + vertical 2 + velocity 4 + yaw 8.

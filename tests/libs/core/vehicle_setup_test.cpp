@@ -230,13 +230,18 @@ TEST(VehicleSetup, ArduPilotCastIntegers) {
   h.vehicle.version = 0x04070000u;  // 4.7.0-dev
   h.setup = VehicleSetup(kSysid, kOurCompid, Profile::ardupilot, MessageSet{MessageKind::odometry});
   h.target.autopilot = kMavAutopilotArdupilot;
-  h.vehicle.params = {{"AHRS_EKF_TYPE", {3, kInt8}},  {"VISO_TYPE", {0, kInt8}},
-                      {"EK3_SRC1_POSXY", {3, kInt8}}, {"EK3_SRC1_VELXY", {3, kInt8}},
-                      {"EK3_SRC1_POSZ", {1, kInt8}},  {"EK3_SRC1_VELZ", {3, kInt8}},
-                      {"EK3_SRC1_YAW", {1, kInt8}},   {"GPS1_TYPE", {1, kInt8}},
-                      {"VISO_DELAY_MS", {10, kInt16}}};
+  h.vehicle.params = {{"AHRS_EKF_TYPE", {3, kInt8}},   {"VISO_TYPE", {0, kInt8}},
+                      {"EK3_SRC1_POSXY", {3, kInt8}},  {"EK3_SRC1_VELXY", {3, kInt8}},
+                      {"EK3_SRC1_POSZ", {1, kInt8}},   {"EK3_SRC1_VELZ", {3, kInt8}},
+                      {"EK3_SRC1_YAW", {1, kInt8}},    {"GPS1_TYPE", {1, kInt8}},
+                      {"VISO_DELAY_MS", {10, kInt16}}, {"COMPASS_ENABLE", {1, kInt8}},
+                      {"COMPASS_USE", {0, kInt8}}};
   h.run(4000);
   EXPECT_EQ(h.setup.state(), SetupState::blocked);
+  // Read for the agreement check's second heading (estimate_sources.hpp), with no line.
+  EXPECT_EQ(h.setup.parameter("COMPASS_ENABLE"), 1.0);
+  EXPECT_EQ(h.setup.parameter("COMPASS_USE"), 0.0);
+  EXPECT_EQ(h.line("COMPASS_USE"), nullptr);
   EXPECT_EQ(h.line("VISO_TYPE")->item.current, 0.0);
   EXPECT_EQ(h.line("VISO_TYPE")->item.severity, SetupSeverity::blocks);
   EXPECT_EQ(h.line("AHRS_EKF_TYPE")->item.status, SetupStatus::ok);

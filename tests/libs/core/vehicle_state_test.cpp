@@ -505,6 +505,77 @@ TEST(VehicleAgreement, UpAxisMistakeWithExternalNavYawDisagreesOnGravity) {
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 0.0, 1e-4);
 }
 
+/// ArduCopter with EKF3 yaw and position from ExternalNav and its compass in use: AHRS2 (DCM's
+/// compass heading) is the nose's one reference (estimate_sources.hpp).
+EstimateSources external_nav_with_compass() {
+  EstimateSources s{{EstimateSource::mocap, "EK3_SRC1_YAW = 6"},
+                    {EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}};
+  s.heading = {EstimateSource::independent, "AHRS2 (DCM with the compass), COMPASS_USE = 1"};
+  return s;
+}
+
+mavlink::Ahrs2 ahrs2(double yaw_rad) {
+  mavlink::Ahrs2 a;
+  a.yaw = static_cast<float>(yaw_rad);
+  return a;
+}
+
+/// stream() with AHRS2 at `heading_rad` before each ATTITUDE.
+std::int64_t stream_with_heading(VehicleState& v, const BodyEstimate& mocap, double heading_rad,
+                                 std::int64_t from_ms, std::int64_t to_ms, AgreementVerdict watch) {
+  std::int64_t first = -1;
+  for (std::int64_t t = from_ms; t <= to_ms; t += 200) {
+    const auto r0 = v.on_message(from(1, 1, ahrs2(heading_rad)), at_ms(t), &mocap);
+    const auto r1 = stream(v, mocap, 0.0, 0.0F, t, t, -60'000, watch);
+    if (first < 0 && r1 >= 0) first = r1;
+    (void)r0;
+  }
+  return first;
+}
+
+TEST(VehicleAgreement, NoseMistakeWithExternalNavYawDisagreesOnTheCompass) {
+  // Issue 48: the body was created nose-left, so mocap's yaw is 90° off the vehicle's real
+  // heading; EKF3 fuses that yaw and reports it back (yaw offset 0), on the ground the positions
+  // coincide, the tilt is level in both. Only the compass (AHRS2: east, 90°) tells.
+  VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(external_nav_with_compass(), HostTime{});
+  EXPECT_TRUE(v.heading_wanted());
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  EXPECT_EQ(stream_with_heading(v, mocap, kPi / 2, 0, 5'000, AgreementVerdict::disagree), 3'000);
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 90.0, 1e-4);
+  EXPECT_NEAR(*v.agreement().heading_rad, kPi / 2, 1e-6);
+  EXPECT_NEAR(*v.agreement().yaw_offset_deg, 0.0, 1e-4);
+  EXPECT_NEAR(*v.agreement().tilt_offset_deg, 0.0, 1e-4);
+}
+
+TEST(VehicleAgreement, ACompassWithin45DegreesAgreesAndItsAbsenceKeepsTheVerdictOpen) {
+  VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(external_nav_with_compass(), HostTime{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  // No AHRS2 yet: the nose is not checked, so no agreement.
+  EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 0, 2'000, -60'000, AgreementVerdict::agree), -1);
+  EXPECT_FALSE(v.agreement().heading_offset_deg);
+  // A compass 30° off (steel in the floor) still agrees: 45° is the limit.
+  EXPECT_EQ(
+      stream_with_heading(v, mocap, 30.0 * kPi / 180.0, 2'200, 3'000, AgreementVerdict::agree),
+      2'200);
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 30.0, 1e-4);
+  // AHRS2 stops: older than kHeadingFresh it is not compared, and the agreement lapses.
+  (void)stream(v, mocap, 0.0, 0.0F, 3'200, 3'800, -60'000, AgreementVerdict::unknown);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);  // 0.8 s: still fresh
+  EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 4'000, 4'400, -60'000, AgreementVerdict::unknown), 4'200);
+  EXPECT_FALSE(v.agreement().heading_offset_deg);
+  // With no compass in use the sources say so, and the check agrees without a heading.
+  EstimateSources no_compass = external_nav_with_compass();
+  no_compass.heading = {EstimateSource::none, "COMPASS_USE = 0: AHRS2's yaw is the gyros' alone"};
+  EXPECT_TRUE(v.set_estimate_sources(no_compass, at_ms(4'500)).agreement_changed);
+  EXPECT_FALSE(v.heading_wanted());
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
+  EXPECT_EQ(stream_with_heading(v, mocap, kPi, 4'600, 8'000, AgreementVerdict::disagree), -1);
+  EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
+  EXPECT_FALSE(v.agreement().heading_offset_deg);  // AHRS2 arriving, not compared
+}
+
 TEST(VehicleAgreement, PositionOffsetDisagreesAndLostMocapIsIgnored) {
   VehicleState v(VehicleStateConfig{});
   auto mocap = mocap_at({0.0, 0.0, 0.0}, 0.0);

@@ -446,6 +446,55 @@ TEST(VehicleStreams, AnotherAutopilotIsNeverAskedForItsEstimator) {
   EXPECT_TRUE(asked_of(VehicleStream::attitude, 0));
 }
 
+TEST(VehicleStreams, Ahrs2IsAskedOfAnArduPilotOnlyWhileItsHeadingIsWanted) {
+  // Issue 48: AHRS2 (DCM's compass heading) is the nose's one reference where EKF3 takes yaw
+  // from mocap; it is asked for only then, and of ArduPilot only.
+  Harness h;
+  const auto feed = [&h](std::int64_t to_ms) {
+    for (std::int64_t t = h.now_ms; t <= to_ms; t += 100) {
+      h.tick_to(t);
+      h.receive(attitude(static_cast<std::uint32_t>(t)));
+      h.receive(position(static_cast<std::uint32_t>(t)));
+    }
+  };
+  feed(10'000);
+  EXPECT_TRUE(h.commands().empty());  // not wanted: never asked
+  EXPECT_EQ(h.state(VehicleStream::heading), StreamState::idle);
+  h.target.want_heading = true;
+  feed(10'300);
+  auto commands = h.commands();
+  ASSERT_EQ(commands.size(), 1U);
+  EXPECT_EQ(commands[0].param1, 178.0F);      // AHRS2
+  EXPECT_EQ(commands[0].param2, 200'000.0F);  // µs: 5 Hz
+  EXPECT_TRUE(h.logged("asking for AHRS2 at 5 Hz (SET_MESSAGE_INTERVAL 178, 200000 us)"));
+  h.receive(ack(0));
+  h.receive(mavlink::Ahrs2{});
+  EXPECT_EQ(h.state(VehicleStream::heading), StreamState::arriving);
+  // No longer wanted (the set-up list now reads EK3_SRC1_YAW = 1): when it stops it is not
+  // asked for again.
+  h.target.want_heading = false;
+  feed(20'000);
+  EXPECT_EQ(h.commands().size(), 1U);
+  EXPECT_EQ(data_stream_id(VehicleStream::heading), 12);  // EXTRA3 on ArduPilot
+  EXPECT_TRUE(asked_of(VehicleStream::heading, kMavAutopilotArdupilot));
+  EXPECT_FALSE(asked_of(VehicleStream::heading, kMavAutopilotPx4));
+}
+
+TEST(VehicleStreams, Px4IsNeverAskedForAhrs2) {
+  Harness h;
+  h.estimator_streams = false;
+  h.target.autopilot = kMavAutopilotPx4;
+  h.target.want_heading = true;
+  for (std::int64_t t = 0; t <= 10'000; t += 100) {
+    h.tick_to(t);
+    h.receive(attitude(static_cast<std::uint32_t>(t)));
+    h.receive(position(static_cast<std::uint32_t>(t)));
+    h.receive(mavlink::EstimatorStatus{});
+  }
+  EXPECT_TRUE(h.commands().empty());
+  EXPECT_EQ(h.state(VehicleStream::heading), StreamState::idle);
+}
+
 TEST(VehicleStreams, MessagesFromOtherSystemsCountForNothing) {
   Harness h;
   h.tick_to(2'000);

@@ -153,6 +153,9 @@ struct AgreementView {
   std::optional<double> tilt_offset_deg{};
   /// While the verdict is disagree: the fix (docs/api.md `agreement.fix`); null otherwise.
   std::optional<AxisFixView> fix{};
+  /// AHRS2's yaw − mocap yaw, where the vehicle's yaw is mocap's and AHRS2 is a heading of its
+  /// own (estimate_sources.hpp); null otherwise.
+  std::optional<double> heading_offset_deg{};
 };
 
 /// The vehicle's autopilot (core::VehicleSetup): "px4", "ardupilot", "other" or "unknown", and

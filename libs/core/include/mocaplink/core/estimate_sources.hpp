@@ -15,12 +15,22 @@
 //              A fake-GPS profile (HIL_GPS) → position from mocap, yaw independent (HIL_GPS has
 //              no yaw field: the heading is the magnetometer's).
 // A parameter not read (yet, or never answered) leaves that quantity `unknown`: the check then
-// never agrees on it (it says so), rather than guess. Pure.
+// never agrees on it (it says so), rather than guess.
+//
+// A second heading, for a vehicle whose yaw comes from mocap (issue 48): ArduPilot sends AHRS2,
+// the attitude of its secondary estimator, which is DCM while EKF3 is the active one (AP_AHRS
+// _get_secondary_EKF_type, 4.5); DCM corrects its yaw with the compass whenever the compass is
+// used for yaw (AP_AHRS_DCM::use_compass: COMPASS_ENABLE and COMPASS_USE set, the compass
+// healthy), whatever EK3_SRC1_YAW says. So with COMPASS_ENABLE = 1 and COMPASS_USE = 1 AHRS2's
+// yaw is a heading of the vehicle's own; with either 0, DCM's yaw only integrates the gyros from
+// wherever it started, and is no reference (`none`). PX4 sends no second heading over MAVLink
+// (ATTITUDE and VFR_HUD both carry EKF2's yaw): `none`. Pure.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -32,8 +42,9 @@ enum class EstimateSource : std::uint8_t {
   unknown,      ///< the deciding parameter is not known (not read yet, or not answered)
   independent,  ///< the vehicle's own sensors (compass, GPS of its own): a real check
   mocap,        ///< mocaplink's poses fed back: agreement proves nothing about the axes
+  none,         ///< the vehicle has no such quantity of its own (`heading` only)
 };
-/// "unknown", "independent", "mocap" (the API's spellings).
+/// "unknown", "independent", "mocap", "none" (the API's spellings).
 [[nodiscard]] std::string_view to_string(EstimateSource source);
 
 /// Where one compared quantity comes from, and the parameter that says so ("EK3_SRC1_YAW = 6";
@@ -47,6 +58,11 @@ struct QuantitySource {
 struct EstimateSources {
   QuantitySource yaw;
   QuantitySource position;
+  /// A second heading to check mocap's yaw against when `yaw` comes from mocap: independent
+  /// (ArduPilot's AHRS2 with the compass in use), none (no compass in use, PX4), unknown (the
+  /// deciding parameters not read yet). `none` with an empty basis when `yaw` is not from mocap:
+  /// the yaw itself is then the heading.
+  QuantitySource heading{EstimateSource::none, {}};
   friend bool operator==(const EstimateSources&, const EstimateSources&) = default;
 };
 
@@ -60,6 +76,17 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
                                                const std::optional<FirmwareVersion>& version,
                                                SetupInput input, const ParameterLookup& parameter);
 
+/// The vehicle's yaw is mocap's and it has a heading of its own to check it against (AHRS2):
+/// that heading is asked for and compared.
+[[nodiscard]] bool checks_second_heading(const EstimateSources& sources);
+
+/// The parameters the sources are decided by that the set-up list has no rule for, read with
+/// it: ArduPilot's COMPASS_ENABLE and COMPASS_USE (the second heading); none for others.
+[[nodiscard]] std::span<const std::string_view> source_parameters(AutopilotFamily autopilot);
+
+/// The heading AHRS2 gives as the agreement check names it ("AHRS2, DCM with the compass").
+inline constexpr std::string_view kSecondHeadingName = "AHRS2 (DCM with the compass)";
+
 /// A PX4 fed over uXRCE-DDS (VehicleLink::px4_dds): its parameters cannot be read there, and
 /// its vision topic exists to be fused, so both are taken to come from mocap — they can still
 /// disagree, never agree (the basis says it is assumed).
@@ -72,7 +99,10 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
                                                             const QuantitySource& source);
 
 /// Both, joined with "; " (yaw first); nullopt when both are independent: the sentence the log
-/// and the dashboard's `agreement.reason` give for what the check did not measure.
+/// and the dashboard's `agreement.reason` give for what the check did not measure. A yaw from
+/// mocap with an independent second heading is named as checked against that heading only
+/// ("yaw checked against AHRS2 (DCM with the compass) only, within 45°: the vehicle's yaw comes
+/// from mocap (EK3_SRC1_YAW = 6)"); without one the sentence says why there is none.
 [[nodiscard]] std::optional<std::string> describe_unchecked(const EstimateSources& sources);
 
 }  // namespace mocaplink::core

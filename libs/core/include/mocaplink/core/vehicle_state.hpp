@@ -45,10 +45,17 @@
 //               comparison can still disagree (the vehicle does not follow our poses) but does
 //               not make an agreement, and while the deciding parameter is not known the verdict
 //               stays unknown rather than agree.
+//               A second heading (issue 48): where the vehicle's yaw is mocap's but it has a
+//               heading of its own (ArduPilot's AHRS2 with the compass in use, sources.heading
+//               independent), each ATTITUDE also compares mocap's yaw with the latest AHRS2 yaw
+//               received within kHeadingFresh (heading offset, deg, AHRS2 − mocap); beyond
+//               kMaxHeadingOffsetDeg (45°: a compass indoors is 10–30° off, a nose mistake 90°
+//               or 180°) it disagrees like the others, and while such a heading is wanted an
+//               agreement needs it too.
 //               The verdict (docs/messages.md "Agreement"):
 //                 agree     at once, when the tilt, yaw and position offsets are known and
-//                           within the thresholds (default 15°, 10°, 0.3 m) and both sources are
-//                           known;
+//                           within the thresholds (default 15°, 10°, 0.3 m), both sources are
+//                           known, and the heading offset too where there is such a heading;
 //                 disagree  only once every comparison for kAgreementHold (3 s) was beyond a
 //                           threshold: a vehicle's estimate jumps while its EKF aligns or resets
 //                           (a false alarm makes pilots ignore the real one); until then unknown,
@@ -144,12 +151,16 @@ inline constexpr Duration kAgreementSettle = std::chrono::seconds(15);
 /// A disagreement becomes the verdict once it has lasted this long, every comparison beyond a
 /// threshold: longer than an estimator's reset transient, short enough to be told before take-off.
 inline constexpr Duration kAgreementHold = std::chrono::seconds(3);
+/// An AHRS2 heading older than this at an ATTITUDE is not compared (asked at 5 Hz: a second is
+/// four lost in a row; a vehicle turned by hand moves some 30° in it, well inside 45°).
+inline constexpr Duration kHeadingFresh = std::chrono::seconds(1);
 
 /// Thresholds of the agreement check (documented defaults; docs/messages.md "Agreement").
 struct AgreementThresholds {
   double max_yaw_offset_deg = 10.0;  ///< ArduPilot's own VisOdom pre-arm yaw check uses 10° (§7)
   double max_tilt_offset_deg = kMaxTiltOffsetDeg;  ///< axis_fix.hpp: why 15°
   double max_position_offset_m = 0.3;
+  double max_heading_offset_deg = kMaxHeadingOffsetDeg;  ///< axis_fix.hpp: why 45°
 };
 
 struct VehicleStateConfig {
@@ -196,6 +207,9 @@ struct Agreement {
   std::optional<double> roll_rad;
   std::optional<double> pitch_rad;
   std::optional<double> yaw_rad;  ///< its yaw: a heading of its own when sources.yaw is independent
+  /// AHRS2 yaw − mocap yaw (deg, (−180, 180]) where sources.heading is independent.
+  std::optional<double> heading_offset_deg;
+  std::optional<double> heading_rad;  ///< the AHRS2 yaw compared (rad, NED)
   /// While the verdict is disagree: the axis settings that make mocap agree with the vehicle at
   /// rest (the Bridge's set_axis_fix, axis_fix.hpp); cleared with the verdict.
   std::optional<AxisFix> fix;
@@ -269,6 +283,8 @@ class VehicleState {
 
   /// The Bridge's axis fix for the current disagreement (ignored unless the verdict is disagree).
   void set_axis_fix(AxisFix fix);
+  /// The vehicle's yaw is mocap's and it has a heading of its own (AHRS2): asked for, compared.
+  [[nodiscard]] bool heading_wanted() const;
 
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
   void on_timesync_request_sent(std::int64_t ts1_ns);
@@ -321,6 +337,9 @@ class VehicleState {
   std::optional<double> vehicle_yaw_offset_deg_;
   std::optional<double> vehicle_position_offset_m_;
   std::optional<double> vehicle_tilt_offset_deg_;
+  std::optional<double> vehicle_heading_offset_deg_;
+  std::optional<double> ahrs2_yaw_rad_;  ///< the vehicle's latest AHRS2 yaw, received at:
+  std::optional<HostTime> ahrs2_received_;
   Agreement agreement_;
   VehicleCounters counters_;
 };

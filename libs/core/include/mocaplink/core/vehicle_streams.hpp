@@ -2,7 +2,10 @@
 // and LOCAL_POSITION_NED (32), when they do not arrive by themselves (issue 31), and for its
 // estimator's health, which the set-up list shows in words (issue 28): EKF_STATUS_REPORT (193)
 // from ArduPilot, ESTIMATOR_STATUS (230) from PX4, at 1 Hz; the estimator's is never asked of
-// another autopilot. Pure: time is passed in; one per vehicle, owned by the Bridge.
+// another autopilot. And, of an ArduPilot whose yaw comes from mocap and whose compass is in use,
+// AHRS2 (178): DCM's heading, the one reference for the nose left (estimate_sources.hpp, issue
+// 48), at 5 Hz, asked only while the Bridge says it is wanted (StreamTarget::want_heading).
+// Pure: time is passed in; one per vehicle, owned by the Bridge.
 //
 // Why: ArduCopter's default stream rates for EXTRA1 (ATTITUDE), POSITION (LOCAL_POSITION_NED) and
 // EXTRA3 (EKF_STATUS_REPORT) are 0 on every port; it sends them on a link only when asked on that
@@ -24,7 +27,8 @@
 //             last attempt → fallback on ArduPilot (autopilot 3), refused on anything else.
 //   accepted  waiting for the message, at most kStreamAnswerTimeout.
 //   fallback  REQUEST_DATA_STREAM (EXTRA1 for ATTITUDE, POSITION for LOCAL_POSITION_NED, EXTRA3
-//             for EKF_STATUS_REPORT) at the message's rate, start_stop 1, sent kDataStreamAttempts
+//             for EKF_STATUS_REPORT and AHRS2 — the group's rate is the one asked last) at the
+//             message's rate, start_stop 1, sent kDataStreamAttempts
 //             times kCommandRetryPeriod apart (it has no ACK) unless the message arrives; then
 //             waiting kStreamAnswerTimeout.
 //   arriving  the message arrives (whether asked or not).
@@ -68,23 +72,26 @@ enum class VehicleStream : std::uint8_t {
   attitude,            ///< ATTITUDE (30): yaw, for the agreement check
   local_position_ned,  ///< LOCAL_POSITION_NED (32): position, for the agreement check
   estimator,           ///< EKF_STATUS_REPORT (193, ArduPilot) / ESTIMATOR_STATUS (230, PX4)
+  heading,             ///< AHRS2 (178, ArduPilot): a heading of its own when its yaw is mocap's
 };
-inline constexpr std::size_t kVehicleStreamCount = 3;
+inline constexpr std::size_t kVehicleStreamCount = 4;
 inline constexpr std::array<VehicleStream, kVehicleStreamCount> kVehicleStreams{
-    VehicleStream::attitude, VehicleStream::local_position_ned, VehicleStream::estimator};
+    VehicleStream::attitude, VehicleStream::local_position_ned, VehicleStream::estimator,
+    VehicleStream::heading};
 /// The two the agreement check compares (its reason names what is missing of them).
 inline constexpr std::array<VehicleStream, 2> kAgreementStreams{VehicleStream::attitude,
                                                                 VehicleStream::local_position_ned};
-/// "ATTITUDE", "LOCAL_POSITION_NED"; the estimator's is "EKF_STATUS_REPORT" on ArduPilot
-/// (`autopilot` 3), "ESTIMATOR_STATUS" on anything else.
+/// "ATTITUDE", "LOCAL_POSITION_NED", "AHRS2"; the estimator's is "EKF_STATUS_REPORT" on
+/// ArduPilot (`autopilot` 3), "ESTIMATOR_STATUS" on anything else.
 [[nodiscard]] std::string_view mavlink_name(VehicleStream stream, std::uint8_t autopilot = 0);
-/// 30, 32; the estimator's 193 on ArduPilot, 230 on anything else.
+/// 30, 32, 178; the estimator's 193 on ArduPilot, 230 on anything else.
 [[nodiscard]] std::uint32_t message_id(VehicleStream stream, std::uint8_t autopilot = 0);
 /// ArduPilot's stream group carrying it (MAV_DATA_STREAM): EXTRA1 = 10, POSITION = 6, EXTRA3 = 12.
 [[nodiscard]] std::uint8_t data_stream_id(VehicleStream stream);
-/// "EXTRA1", "POSITION", "EXTRA3".
+/// "EXTRA1", "POSITION", "EXTRA3" (the estimator's and AHRS2).
 [[nodiscard]] std::string_view data_stream_name(VehicleStream stream);
-/// Whether it is asked of this autopilot: the estimator's only of ArduPilot (3) and PX4 (12).
+/// Whether it is asked of this autopilot: the estimator's only of ArduPilot (3) and PX4 (12),
+/// AHRS2 only of ArduPilot (and then only when wanted).
 [[nodiscard]] bool asked_of(VehicleStream stream, std::uint8_t autopilot);
 
 /// 5 Hz: a yaw or position check before take-off needs a fresh value, not a fast one (the
@@ -98,7 +105,8 @@ inline constexpr std::int32_t kStreamIntervalUs = 200'000;
 /// radio. ArduPilot's GCS defaults for EXTRA3 are 1-2 Hz, PX4's for ESTIMATOR_STATUS 0.5-1 Hz.
 inline constexpr double kEstimatorRateHz = 1.0;
 inline constexpr std::int32_t kEstimatorIntervalUs = 1'000'000;
-/// kStreamRateHz, or kEstimatorRateHz for the estimator's.
+/// kStreamRateHz (AHRS2's too: a nose check at rest needs a heading as fresh as the yaw it is
+/// compared with), or kEstimatorRateHz for the estimator's.
 [[nodiscard]] double rate_hz(VehicleStream stream);
 [[nodiscard]] std::int32_t interval_us(VehicleStream stream);
 /// After the first heartbeat of a boot: a message arriving by then is not asked for.
@@ -158,6 +166,9 @@ struct StreamTarget {
   bool alive = false;          ///< a heartbeat from the vehicle within kVehicleSilentAfter
   std::uint8_t autopilot = 0;  ///< MAV_AUTOPILOT of that heartbeat (3 ArduPilot: fallback)
   std::uint8_t compid = 1;     ///< the heartbeat's component: the commands' target component
+  /// AHRS2 is wanted: the vehicle's yaw is mocap's and its compass is in use (the agreement's
+  /// sources). While false it is not asked for, and an unanswered request is not repeated.
+  bool want_heading = false;
 };
 
 class VehicleStreams {
