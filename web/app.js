@@ -19,6 +19,14 @@ const state = {
 // ---- formatting ---------------------------------------------------------------------------
 
 const num = (v, digits = 1, unit = '') => (v === null || v === undefined ? '–' : `${Number(v).toFixed(digits)}${unit}`);
+// "agree on tilt only", "agree on tilt and compass": what an agreement was measured against (the
+// reason names what came from mocap).
+const agreedOn = (ag) => {
+  const c = ag.checked || [];
+  if (c.length === 0) return ag.verdict;
+  const list = c.length === 1 ? `${c[0]} only` : `${c.slice(0, -1).join(', ')} and ${c[c.length - 1]}`;
+  return `agree on ${list}`;
+};
 const int = (v) => (v === null || v === undefined ? '–' : Number(v).toLocaleString('en-US'));
 
 /** Shows `text` in a coloured pill; `role` is the element's own class, kept across updates. */
@@ -292,7 +300,7 @@ function renderVehicle(card, v, fromPatch = false) {
   const offsets = `tilt ${num(ag.tilt_offset_deg, 1, '°')} · yaw ${num(ag.yaw_offset_deg, 1, '°')} · position ${num(ag.position_offset_m, 3, ' m')}${ag.heading_offset_deg == null ? '' : ` · compass ${num(ag.heading_offset_deg, 1, '°')}`}`;
   $('.v-agreement', r).textContent = ag.verdict === 'unknown'
     ? `unknown: ${ag.reason || 'waiting for the vehicle\'s estimate'}${ag.yaw_offset_deg === null && ag.position_offset_m === null && ag.tilt_offset_deg == null ? '' : ` · ${offsets}`}`
-    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : ag.verdict} · ${offsets}${ag.reason ? ` · ${ag.reason}` : ''}`;
+    : `${ag.verdict === 'disagree' ? '⚠ DISAGREES' : agreedOn(ag)} · ${offsets}${ag.reason ? ` · ${ag.reason}` : ''}`;
 
   // Inputs: never overwrite what the user is doing.
   if (!card.dragging && document.activeElement !== card.rate) {

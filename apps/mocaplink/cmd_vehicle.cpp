@@ -102,7 +102,22 @@ void print_text(const nlohmann::json& v) {
     };
     // The compass (AHRS2) where the vehicle's yaw is mocap's and it has one.
     const std::string compass = fixed("heading_offset_deg", 1);
-    std::printf("  agreement: %s (tilt %s deg, yaw %s deg, position %s m%s)\n", verdict.c_str(),
+    // An agreement names what it rests on: "agree on tilt only" when yaw and position are
+    // mocap's own (the reason below says so), so it never reads as a nose check it was not.
+    std::string checked;
+    if (agreement.contains("checked") && agreement.at("checked").is_array()) {
+      const auto& list = agreement.at("checked");
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        checked += (k == 0                 ? ""
+                    : k + 1 == list.size() ? " and "
+                                           : ", ") +
+                   list[k].get<std::string>();
+      }
+      if (list.size() == 1) checked += " only";
+    }
+    const std::string headline =
+        verdict == "agree" && !checked.empty() ? "agree on " + checked : verdict;
+    std::printf("  agreement: %s (tilt %s deg, yaw %s deg, position %s m%s)\n", headline.c_str(),
                 fixed("tilt_offset_deg", 1).c_str(), fixed("yaw_offset_deg", 1).c_str(),
                 fixed("position_offset_m", 3).c_str(),
                 compass == "-" ? "" : (", compass " + compass + " deg").c_str());

@@ -75,6 +75,8 @@ describe('dashboard against the fake backend', () => {
     assert.match(await quad.locator('.v-timesync').textContent(), /^synced/);
     assert.equal(await quad.locator('.v-origin').textContent(), 'confirmed');
     assert.match(await quad.locator('.v-agreement-box').getAttribute('class'), /\bagree\b/);
+    // An agreement says what it was measured on (agreement.checked).
+    assert.match(await quad.locator('.v-agreement').textContent(), /^agree on tilt, yaw and position · tilt 1\.5°/);
     // The rover's estimate disagrees: warning colour (class) and text.
     assert.match(await rover.locator('.v-agreement-box').getAttribute('class'), /\bdisagree\b/);
     assert.match(await rover.locator('.v-agreement').textContent(), /DISAGREES · tilt – · yaw 89.7°/);

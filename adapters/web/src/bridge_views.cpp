@@ -229,6 +229,16 @@ std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot
   return "comparing the vehicle's estimate with mocap";
 }
 
+/// What the agreement measured independently (docs/api.md `agreement.checked`): gravity
+/// always, yaw and position where they are the vehicle's own, the compass where it is asked.
+std::vector<std::string> checked_quantities(const core::EstimateSources& sources) {
+  std::vector<std::string> out{"tilt"};
+  if (sources.yaw.source == core::EstimateSource::independent) out.emplace_back("yaw");
+  if (sources.position.source == core::EstimateSource::independent) out.emplace_back("position");
+  if (core::checks_second_heading(sources)) out.emplace_back("compass");
+  return out;
+}
+
 }  // namespace
 
 void fill_setup_view(const core::VehicleStatus& in, core::HostTime now, VehicleView& v) {
@@ -353,6 +363,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
                                 state.agreement.position_offset_m,
                                 agreement_reason(snapshot, in, v), state.agreement.tilt_offset_deg};
     v.agreement.heading_offset_deg = state.agreement.heading_offset_deg;
+    v.agreement.checked = checked_quantities(state.agreement.sources);
     if (const auto& fix = state.agreement.fix) {
       v.agreement.fix = AxisFixView{std::string(core::to_string(fix->kind)),
                                     fix->lines,

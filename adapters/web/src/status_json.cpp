@@ -190,6 +190,7 @@ void to_json(nlohmann::json& j, const VehicleView& vehicle) {
         {"yaw_offset_deg", optional_json(vehicle.agreement.yaw_offset_deg)},
         {"position_offset_m", optional_json(vehicle.agreement.position_offset_m)},
         {"heading_offset_deg", optional_json(vehicle.agreement.heading_offset_deg)},
+        {"checked", vehicle.agreement.checked},
         {"reason", optional_json(vehicle.agreement.reason)},
         {"fix", fix_json(vehicle.agreement.fix)}}},
       {"streams", vehicle.streams},

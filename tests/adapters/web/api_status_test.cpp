@@ -119,6 +119,7 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
                                      {"yaw_offset_deg", 0.4},
                                      {"position_offset_m", 0.012},
                                      {"heading_offset_deg", nullptr},
+                                     {"checked", {"tilt", "yaw", "position"}},
                                      {"reason", nullptr},
                                      {"fix", nullptr}}));
   const json& rover = s["vehicles"][1];

@@ -85,6 +85,7 @@ FakeBackend::FakeBackend() {
   q.timesync = TimesyncView{TimesyncState::synced, 1234.5, 0.8};
   q.origin = OriginState::confirmed;
   q.agreement = AgreementView{AgreementVerdict::agree, 0.4, 0.012, std::nullopt, 1.5};
+  q.agreement.checked = {"tilt", "yaw", "position"};  // a PX4 on its own compass and GPS
   // quad1's set-up list (what core::VehicleSetup reports for a PX4 1.14 left at its GPS defaults).
   q.autopilot = AutopilotView{"px4", "1.14.3", "px4"};
   q.setup.state = "blocked";

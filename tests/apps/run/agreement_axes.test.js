@@ -188,6 +188,11 @@ async function main() {
     assert.equal(ok.agreement.fix, null);
     assert.equal(ok.streams.AHRS2, 'arriving', JSON.stringify(ok.streams));
     assert.ok(right.quad.ahrs2Asked >= 1);
+    assert.deepEqual(ok.agreement.checked, ['tilt', 'compass'], JSON.stringify(ok.agreement));
+    const rightSetup = h.mocaplink(['vehicle', 'setup', '--config', right.config, 'quad', '--timeout', '20']);
+    await rightSetup.exited;
+    assert.match(rightSetup.stdout, /^ {2}agreement: agree on tilt and compass \(tilt [0-9.]+ deg, .*compass -?[0-9.]+ deg\)$/m,
+      `${rightSetup.stdout}\n${rightSetup.stderr}`);
 
     const bad = await mistake.verdict('disagree', 25000,
       (ag) => typeof ag.reason === 'string' && ag.reason.endsWith(NOT_CHECKABLE));
@@ -242,6 +247,7 @@ async function main() {
     assert.ok(px4Turned.reason.endsWith('position not checkable: the vehicle\'s position comes from '
       + 'mocap (EKF2_EV_CTRL = 7)'), px4Turned.reason);
     assert.equal(px4Nose.quad.ahrs2Asked, 0);  // never asked of PX4
+    assert.deepEqual(px4Turned.checked, ['tilt', 'yaw'], JSON.stringify(px4Turned));
     console.log(`ok: right axes agree (tilt ${ok.agreement.tilt_offset_deg.toFixed(1)}°, compass `
       + `${ok.agreement.heading_offset_deg.toFixed(1)}°); up = "+y" disagrees (tilt `
       + `${a.tilt_offset_deg.toFixed(1)}°) with ${a.fix.text}; body_forward = "+y" disagrees `

@@ -156,6 +156,9 @@ struct AgreementView {
   /// AHRS2's yaw − mocap yaw, where the vehicle's yaw is mocap's and AHRS2 is a heading of its
   /// own (estimate_sources.hpp); null otherwise.
   std::optional<double> heading_offset_deg{};
+  /// What the comparison measured against something of the vehicle's own, in this order:
+  /// "tilt" (always), "yaw", "position", "compass" (AHRS2); what came from mocap is missing.
+  std::vector<std::string> checked{};
 };
 
 /// The vehicle's autopilot (core::VehicleSetup): "px4", "ardupilot", "other" or "unknown", and
