@@ -33,6 +33,7 @@ constexpr std::array<MessageInfo, kMessageCount> kInfos{{
     info_of<GlobalVisionPositionEstimate>(),
     info_of<VisionPositionEstimate>(),
     info_of<VisionSpeedEstimate>(),
+    info_of<HighresImu>(),
     info_of<Timesync>(),
     info_of<HilGps>(),
     info_of<AttPosMocap>(),
@@ -128,32 +129,34 @@ const MessageInfo* find_message_info(std::uint32_t msgid) noexcept {
       return &kInfos[18];
     case 103:
       return &kInfos[19];
-    case 111:
+    case 105:
       return &kInfos[20];
-    case 113:
+    case 111:
       return &kInfos[21];
-    case 138:
+    case 113:
       return &kInfos[22];
-    case 148:
+    case 138:
       return &kInfos[23];
-    case 178:
+    case 148:
       return &kInfos[24];
-    case 193:
+    case 178:
       return &kInfos[25];
-    case 230:
+    case 193:
       return &kInfos[26];
-    case 232:
+    case 230:
       return &kInfos[27];
-    case 242:
+    case 232:
       return &kInfos[28];
-    case 245:
+    case 242:
       return &kInfos[29];
-    case 253:
+    case 245:
       return &kInfos[30];
-    case 256:
+    case 253:
       return &kInfos[31];
-    case 331:
+    case 256:
       return &kInfos[32];
+    case 331:
+      return &kInfos[33];
     default:
       return nullptr;
   }
@@ -188,6 +191,7 @@ std::optional<Message> make_message(std::string_view name) noexcept {
   if (name == GlobalVisionPositionEstimate::kName) return GlobalVisionPositionEstimate{};
   if (name == VisionPositionEstimate::kName) return VisionPositionEstimate{};
   if (name == VisionSpeedEstimate::kName) return VisionSpeedEstimate{};
+  if (name == HighresImu::kName) return HighresImu{};
   if (name == Timesync::kName) return Timesync{};
   if (name == HilGps::kName) return HilGps{};
   if (name == AttPosMocap::kName) return AttPosMocap{};
@@ -246,6 +250,8 @@ std::optional<Message> make_message(std::uint32_t msgid) noexcept {
       return VisionPositionEstimate{};
     case VisionSpeedEstimate::kId:
       return VisionSpeedEstimate{};
+    case HighresImu::kId:
+      return HighresImu{};
     case Timesync::kId:
       return Timesync{};
     case HilGps::kId:
@@ -320,6 +326,8 @@ std::optional<Message> unpack_message(std::uint32_t msgid,
       return unpack_as<VisionPositionEstimate>(payload);
     case VisionSpeedEstimate::kId:
       return unpack_as<VisionSpeedEstimate>(payload);
+    case HighresImu::kId:
+      return unpack_as<HighresImu>(payload);
     case Timesync::kId:
       return unpack_as<Timesync>(payload);
     case HilGps::kId:

@@ -1411,6 +1411,114 @@ void for_each_field(M& m, F&& f) {
   f(M::kFields[5], m.reset_counter);
 }
 
+/// HIGHRES_IMU (#105).
+struct HighresImu {
+  static constexpr std::uint32_t kId = 105;
+  static constexpr std::string_view kName = "HIGHRES_IMU";
+  static constexpr std::uint8_t kCrcExtra = 93;
+  static constexpr std::uint8_t kBaseLength = 62;
+  static constexpr std::uint8_t kMaxLength = 63;
+  static constexpr std::array<FieldInfo, 16> kFields{{
+      {"time_usec", FieldType::u64, 1, 0, false, "us", ""},
+      {"xacc", FieldType::f32, 1, 8, false, "m/s/s", ""},
+      {"yacc", FieldType::f32, 1, 12, false, "m/s/s", ""},
+      {"zacc", FieldType::f32, 1, 16, false, "m/s/s", ""},
+      {"xgyro", FieldType::f32, 1, 20, false, "rad/s", ""},
+      {"ygyro", FieldType::f32, 1, 24, false, "rad/s", ""},
+      {"zgyro", FieldType::f32, 1, 28, false, "rad/s", ""},
+      {"xmag", FieldType::f32, 1, 32, false, "gauss", ""},
+      {"ymag", FieldType::f32, 1, 36, false, "gauss", ""},
+      {"zmag", FieldType::f32, 1, 40, false, "gauss", ""},
+      {"abs_pressure", FieldType::f32, 1, 44, false, "hPa", ""},
+      {"diff_pressure", FieldType::f32, 1, 48, false, "hPa", ""},
+      {"pressure_alt", FieldType::f32, 1, 52, false, "", ""},
+      {"temperature", FieldType::f32, 1, 56, false, "degC", ""},
+      {"fields_updated", FieldType::u16, 1, 60, false, "", ""},
+      {"id", FieldType::u8, 1, 62, true, "", ""},
+  }};
+
+  std::uint64_t time_usec{};       ///< [us]; wire offset 0
+  float xacc{};                    ///< [m/s/s]; wire offset 8
+  float yacc{};                    ///< [m/s/s]; wire offset 12
+  float zacc{};                    ///< [m/s/s]; wire offset 16
+  float xgyro{};                   ///< [rad/s]; wire offset 20
+  float ygyro{};                   ///< [rad/s]; wire offset 24
+  float zgyro{};                   ///< [rad/s]; wire offset 28
+  float xmag{};                    ///< [gauss]; wire offset 32
+  float ymag{};                    ///< [gauss]; wire offset 36
+  float zmag{};                    ///< [gauss]; wire offset 40
+  float abs_pressure{};            ///< [hPa]; wire offset 44
+  float diff_pressure{};           ///< [hPa]; wire offset 48
+  float pressure_alt{};            ///< wire offset 52
+  float temperature{};             ///< [degC]; wire offset 56
+  std::uint16_t fields_updated{};  ///< wire offset 60
+  std::uint8_t id{};               ///< extension (MAVLink 2 only; 0 when absent); wire offset 62
+
+  /// Writes every field (untruncated) at its wire offset.
+  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
+    detail::store(p, 0, time_usec);
+    detail::store(p, 8, xacc);
+    detail::store(p, 12, yacc);
+    detail::store(p, 16, zacc);
+    detail::store(p, 20, xgyro);
+    detail::store(p, 24, ygyro);
+    detail::store(p, 28, zgyro);
+    detail::store(p, 32, xmag);
+    detail::store(p, 36, ymag);
+    detail::store(p, 40, zmag);
+    detail::store(p, 44, abs_pressure);
+    detail::store(p, 48, diff_pressure);
+    detail::store(p, 52, pressure_alt);
+    detail::store(p, 56, temperature);
+    detail::store(p, 60, fields_updated);
+    detail::store(p, 62, id);
+  }
+  /// Reads every field from a full-length (zero-filled) payload.
+  [[nodiscard]] static HighresImu unpack(std::span<const std::uint8_t, kMaxLength> p) noexcept {
+    HighresImu m;
+    detail::load(p, 0, m.time_usec);
+    detail::load(p, 8, m.xacc);
+    detail::load(p, 12, m.yacc);
+    detail::load(p, 16, m.zacc);
+    detail::load(p, 20, m.xgyro);
+    detail::load(p, 24, m.ygyro);
+    detail::load(p, 28, m.zgyro);
+    detail::load(p, 32, m.xmag);
+    detail::load(p, 36, m.ymag);
+    detail::load(p, 40, m.zmag);
+    detail::load(p, 44, m.abs_pressure);
+    detail::load(p, 48, m.diff_pressure);
+    detail::load(p, 52, m.pressure_alt);
+    detail::load(p, 56, m.temperature);
+    detail::load(p, 60, m.fields_updated);
+    detail::load(p, 62, m.id);
+    return m;
+  }
+  bool operator==(const HighresImu&) const = default;
+};
+
+/// Calls f(const FieldInfo&, field&) for each field of a HighresImu in wire order.
+template <typename M, typename F>
+requires std::same_as<std::remove_const_t<M>, HighresImu>
+void for_each_field(M& m, F&& f) {
+  f(M::kFields[0], m.time_usec);
+  f(M::kFields[1], m.xacc);
+  f(M::kFields[2], m.yacc);
+  f(M::kFields[3], m.zacc);
+  f(M::kFields[4], m.xgyro);
+  f(M::kFields[5], m.ygyro);
+  f(M::kFields[6], m.zgyro);
+  f(M::kFields[7], m.xmag);
+  f(M::kFields[8], m.ymag);
+  f(M::kFields[9], m.zmag);
+  f(M::kFields[10], m.abs_pressure);
+  f(M::kFields[11], m.diff_pressure);
+  f(M::kFields[12], m.pressure_alt);
+  f(M::kFields[13], m.temperature);
+  f(M::kFields[14], m.fields_updated);
+  f(M::kFields[15], m.id);
+}
+
 /// TIMESYNC (#111).
 struct Timesync {
   static constexpr std::uint32_t kId = 111;
@@ -2378,12 +2486,12 @@ using Message =
                  GpsRawInt, Attitude, AttitudeQuaternion, LocalPositionNed, GlobalPositionInt,
                  SetGpsGlobalOrigin, GpsGlobalOrigin, RequestDataStream, CommandLong, CommandAck,
                  GlobalVisionPositionEstimate, VisionPositionEstimate, VisionSpeedEstimate,
-                 Timesync, HilGps, AttPosMocap, AutopilotVersion, Ahrs2, EkfStatusReport,
-                 EstimatorStatus, GpsInput, HomePosition, ExtendedSysState, Statustext,
-                 SetupSigning, Odometry>;
+                 HighresImu, Timesync, HilGps, AttPosMocap, AutopilotVersion, Ahrs2,
+                 EkfStatusReport, EstimatorStatus, GpsInput, HomePosition, ExtendedSysState,
+                 Statustext, SetupSigning, Odometry>;
 
 /// Number of known messages and the largest payload among them.
-inline constexpr std::size_t kMessageCount = 33;
+inline constexpr std::size_t kMessageCount = 34;
 inline constexpr std::size_t kLargestPayload = 233;
 
 /// The definition of message `msgid`, or nullptr if mocaplink does not know it. O(1).
