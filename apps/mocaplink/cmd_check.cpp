@@ -59,9 +59,9 @@ void print_summary(const config::Config& cfg) {
     std::string endpoints;
     for (const auto& g : v.gcs) endpoints += (endpoints.empty() ? "" : ", ") + config::to_string(g);
     std::printf("  %s: ground stations at %s\n", v.spec.name.c_str(), endpoints.c_str());
-    const double own =
-        core::link_bytes_per_second(core::messages_for(v.spec.profile, v.spec.messages),
-                                    v.spec.rate_hz, v.spec.signing_key.has_value());
+    const double own = core::link_bytes_per_second(
+        v.spec.profile, core::messages_for(v.spec.profile, v.spec.messages), v.spec.rate_hz,
+        v.spec.signing_key.has_value());
     if (v.link.kind == config::LinkKind::serial) {
       const double capacity = core::serial_bytes_per_second(v.link.baud);
       std::printf(

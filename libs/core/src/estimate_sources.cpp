@@ -28,6 +28,7 @@ QuantitySource unknown(std::string_view parameter) {
 }
 
 constexpr std::array<std::string_view, 2> kArduCompass{"COMPASS_ENABLE", "COMPASS_USE"};
+constexpr std::array<std::string_view, 1> kPx4Compass{"SYS_HAS_MAG"};
 
 /// AHRS2's yaw as a heading (estimate_sources.hpp): DCM's, corrected by the compass when it is
 /// enabled and used for yaw.
@@ -39,7 +40,7 @@ QuantitySource ardupilot_heading(const ParameterLookup& parameter) {
       return {EstimateSource::none, std::string(name) + " = 0: AHRS2's yaw is the gyros' alone"};
     }
   }
-  return {EstimateSource::independent, std::string(kSecondHeadingName) + ", COMPASS_USE = 1"};
+  return {EstimateSource::independent, "AHRS2, DCM with the compass: COMPASS_USE = 1"};
 }
 
 bool has_bit(double value, unsigned bit) {
@@ -67,8 +68,12 @@ EstimateSources ardupilot(SetupInput input, const ParameterLookup& parameter) {
   return s;
 }
 
-QuantitySource px4_no_heading() {
-  return {EstimateSource::none, "PX4 sends no heading but EKF2's over MAVLink"};
+/// The magnetometer's heading (HIGHRES_IMU, tilt-compensated here) where PX4 has one.
+QuantitySource px4_heading(const ParameterLookup& parameter) {
+  const auto has_mag = parameter("SYS_HAS_MAG");
+  if (!has_mag) return unknown("SYS_HAS_MAG");
+  if (*has_mag == 0) return {EstimateSource::none, "SYS_HAS_MAG = 0: no magnetometer"};
+  return {EstimateSource::independent, "the magnetometer in HIGHRES_IMU: SYS_HAS_MAG = 1"};
 }
 
 EstimateSources px4(const std::optional<FirmwareVersion>& version, SetupInput input,
@@ -90,7 +95,7 @@ EstimateSources px4(const std::optional<FirmwareVersion>& version, SetupInput in
   if (!value) return {unknown(name), unknown(name), unknown(name)};
   s.yaw = has_bit(*value, yaw_bit) ? from_mocap(name, *value) : independent(name, *value);
   s.position = has_bit(*value, pos_bit) ? from_mocap(name, *value) : independent(name, *value);
-  if (s.yaw.source == EstimateSource::mocap) s.heading = px4_no_heading();
+  if (s.yaw.source == EstimateSource::mocap) s.heading = px4_heading(parameter);
   return s;
 }
 
@@ -117,6 +122,7 @@ bool checks_second_heading(const EstimateSources& sources) {
 
 std::span<const std::string_view> source_parameters(AutopilotFamily autopilot) {
   if (autopilot == AutopilotFamily::ardupilot) return kArduCompass;
+  if (autopilot == AutopilotFamily::px4) return kPx4Compass;
   return {};
 }
 
@@ -139,7 +145,8 @@ EstimateSources px4_dds_sources() {
   const QuantitySource assumed{EstimateSource::mocap,
                                "assumed: PX4 fuses the poses it is sent over uXRCE-DDS, and "
                                "EKF2_EV_CTRL cannot be read there"};
-  return {assumed, assumed, px4_no_heading()};
+  // Nothing but poses goes over uXRCE-DDS here: no magnetometer is read.
+  return {assumed, assumed, {EstimateSource::none, "no MAVLink link to read its magnetometer"}};
 }
 
 std::optional<std::string> describe_unchecked(std::string_view what, const QuantitySource& source) {
@@ -169,7 +176,7 @@ std::optional<std::string> describe_unchecked(const EstimateSources& sources) {
     char limit[16];
     std::snprintf(limit, sizeof limit, "%g", kMaxHeadingOffsetDeg);
     if (h.source == EstimateSource::independent) {
-      yaw = "yaw checked against " + std::string(kSecondHeadingName) + " only, within " + limit +
+      yaw = "yaw checked against its compass only (" + h.basis + "), within " + limit +
             "°: the vehicle's yaw comes from mocap (" + sources.yaw.basis + ")";
     } else if (h.source == EstimateSource::none && !h.basis.empty()) {
       *yaw += ", and it has no heading of its own (" + h.basis + "): the nose is unchecked";

@@ -185,7 +185,39 @@ std::size_t max_frame_bytes(MessageKind kind, bool signed_frames) {
          (signed_frames ? mavlink::kSignatureSize : 0);
 }
 
-double link_bytes_per_second(const MessageSet& messages, double rate_hz, bool signed_frames) {
+namespace {
+
+/// The heading the agreement check may ask a vehicle of this profile for (vehicle_streams.hpp):
+/// ArduPilot's AHRS2, PX4's HIGHRES_IMU, either where the profile does not say which autopilot;
+/// none for px4-gps (HIL_GPS has no yaw: PX4's is its own, no second heading is asked).
+struct HeadingStream {
+  std::size_t payload_bytes;
+  std::string_view name;
+};
+
+HeadingStream heading_stream(Profile profile) {
+  switch (profile) {
+    case Profile::ardupilot:
+    case Profile::ardupilot_gps:
+      return {mavlink::Ahrs2::kMaxLength, mavlink::Ahrs2::kName};
+    case Profile::px4:
+      return {mavlink::HighresImu::kMaxLength, mavlink::HighresImu::kName};
+    case Profile::px4_gps:
+      return {0, ""};
+    case Profile::classic:
+    case Profile::custom:
+    case Profile::automatic:
+      break;
+  }
+  return {std::max(mavlink::Ahrs2::kMaxLength, mavlink::HighresImu::kMaxLength),
+          "AHRS2 or HIGHRES_IMU"};
+}
+
+}  // namespace
+
+double link_bytes_per_second(Profile profile, const MessageSet& messages, double rate_hz,
+                             bool signed_frames) {
+  const HeadingStream heading = heading_stream(profile);
   double per_send = 0.0;
   for (const auto& row : kMessages) {
     if (messages.contains(row.kind)) {
@@ -202,12 +234,15 @@ double link_bytes_per_second(const MessageSet& messages, double rate_hz, bool si
   // From the vehicle: ATTITUDE and LOCAL_POSITION_NED at the rate the agreement check asks for
   // (vehicle_streams.hpp). A UART carries each direction on its own wire, but a telemetry radio
   // shares one air channel between both, so the bound counts them (signed like ours).
-  // AHRS2 at that rate too, asked only of an ArduPilot whose yaw is mocap's (an upper bound
-  // counts it). And the estimator's health the set-up list asks for at 1 Hz (the larger of
+  // The heading's at that rate too (ArduPilot's AHRS2, PX4's HIGHRES_IMU, the larger where the
+  // profile does not say), asked only of a vehicle whose yaw is mocap's (an upper bound counts
+  // it). And the estimator's health the set-up list asks for at 1 Hz (the larger of
   // ArduPilot's and PX4's message).
   const double requested =
-      static_cast<double>(3 * frame + mavlink::Attitude::kMaxLength +
-                          mavlink::LocalPositionNed::kMaxLength + mavlink::Ahrs2::kMaxLength) *
+      static_cast<double>(2 * frame + mavlink::Attitude::kMaxLength +
+                          mavlink::LocalPositionNed::kMaxLength) *
+          kStreamRateHz +
+      static_cast<double>(heading.payload_bytes == 0 ? 0 : frame + heading.payload_bytes) *
           kStreamRateHz +
       static_cast<double>(frame + std::max(mavlink::EkfStatusReport::kMaxLength,
                                            mavlink::EstimatorStatus::kMaxLength)) *
@@ -222,17 +257,21 @@ double serial_bytes_per_second(std::uint32_t baud) {
 std::optional<std::string> serial_bandwidth_warning(Profile profile, const MessageSet& messages,
                                                     double rate_hz, bool signed_frames,
                                                     std::uint32_t baud) {
-  const double needed = link_bytes_per_second(messages, rate_hz, signed_frames);
+  const double needed = link_bytes_per_second(profile, messages, rate_hz, signed_frames);
   const double available = serial_bytes_per_second(baud);
   if (needed <= available) return std::nullopt;
   // autopilots.md §7: a full ODOMETRY frame is 245 bytes; 57600 baud carries ~23/s.
+  const std::string_view heading = heading_stream(profile).name;
+  const std::string streams = heading.empty()
+                                  ? "ATTITUDE and LOCAL_POSITION_NED"
+                                  : "ATTITUDE, LOCAL_POSITION_NED and " + std::string(heading);
   char text[320];
   std::snprintf(text, sizeof text,
-                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's ATTITUDE, "
-                "LOCAL_POSITION_NED and AHRS2 at %g Hz and its estimator status at 1 Hz) but %u "
-                "baud carries %.0f: frames will be dropped; lower rate_hz or raise the baud rate",
+                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's %s at %g Hz "
+                "and its estimator status at 1 Hz) but %u baud carries %.0f: frames will be "
+                "dropped; lower rate_hz or raise the baud rate",
                 static_cast<int>(to_string(profile).size()), to_string(profile).data(), rate_hz,
-                needed, kStreamRateHz, baud, available);
+                needed, streams.c_str(), kStreamRateHz, baud, available);
   return std::string(text);
 }
 

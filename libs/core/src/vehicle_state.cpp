@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
 
 #include "mocaplink/core/message_builders.hpp"
@@ -97,6 +98,15 @@ std::string vehicle_clock_text(const VehicleClockFigures& f, std::uint8_t autopi
   return {};
 }
 
+double magnetic_heading_rad(const Eigen::Vector3d& field_frd, double roll_rad, double pitch_rad) {
+  const Eigen::Vector3d level = (Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(roll_rad, Eigen::Vector3d::UnitX()))
+                                    .toRotationMatrix() *
+                                field_frd;
+  if (std::hypot(level.x(), level.y()) == 0.0) return std::numeric_limits<double>::quiet_NaN();
+  return std::atan2(-level.y(), level.x());
+}
+
 double wrap_deg_180(double degrees) {
   double d = std::fmod(degrees, 360.0);  // (−360, 360)
   if (d > 180.0) d -= 360.0;
@@ -131,6 +141,14 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
       ahrs2_yaw_rad_ = ahrs2->yaw;
       ahrs2_received_ = now;
     }
+  } else if (const auto* imu = std::get_if<mavlink::HighresImu>(&message.message)) {
+    // Bits 6-8 of fields_updated: the magnetometer's x, y, z are this sample's.
+    constexpr std::uint16_t kMagBits = (1U << 6) | (1U << 7) | (1U << 8);
+    const Eigen::Vector3d field(imu->xmag, imu->ymag, imu->zmag);
+    if ((imu->fields_updated & kMagBits) == kMagBits && field.allFinite()) {
+      mag_frd_ = field;
+      mag_received_ = now;
+    }
   } else if (const auto* att = std::get_if<mavlink::Attitude>(&message.message)) {
     if (settled(att->time_boot_ms, now, reaction) && mocap != nullptr &&
         mocap->state == TrackingState::tracking && std::isfinite(att->yaw)) {
@@ -143,9 +161,18 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
       if (std::isfinite(offset)) vehicle_yaw_offset_deg_ = offset;
       vehicle_heading_offset_deg_.reset();
       agreement_.heading_rad.reset();
-      if (heading_wanted() && ahrs2_received_ && now - *ahrs2_received_ <= kHeadingFresh) {
-        vehicle_heading_offset_deg_ = offset_deg(*ahrs2_yaw_rad_);
-        agreement_.heading_rad = ahrs2_yaw_rad_;
+      const auto fresh = [&](const std::optional<HostTime>& t) {
+        return t && now - *t <= kHeadingFresh;
+      };
+      std::optional<double> heading;
+      if (heading_wanted() && fresh(ahrs2_received_)) heading = ahrs2_yaw_rad_;
+      if (heading_wanted() && !heading && fresh(mag_received_)) {
+        const double h = magnetic_heading_rad(*mag_frd_, att->roll, att->pitch);
+        if (std::isfinite(h)) heading = h;
+      }
+      if (heading) {
+        vehicle_heading_offset_deg_ = offset_deg(*heading);
+        agreement_.heading_rad = heading;
       }
       if (std::isfinite(tilt)) {
         vehicle_tilt_offset_deg_ = tilt;

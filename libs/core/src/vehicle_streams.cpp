@@ -60,7 +60,10 @@ StreamFacts facts(VehicleStream stream, std::uint8_t autopilot) {
     case VehicleStream::local_position_ned:
       return {mavlink::LocalPositionNed::kName, mavlink::LocalPositionNed::kId, 6, "POSITION"};
     case VehicleStream::heading:
-      return {mavlink::Ahrs2::kName, mavlink::Ahrs2::kId, 12, "EXTRA3"};
+      // PX4's magnetometer (HIGHRES_IMU; PX4 has no groups, never a fallback), ArduPilot's DCM.
+      return autopilot == kMavAutopilotPx4
+                 ? StreamFacts{mavlink::HighresImu::kName, mavlink::HighresImu::kId, 12, "EXTRA3"}
+                 : StreamFacts{mavlink::Ahrs2::kName, mavlink::Ahrs2::kId, 12, "EXTRA3"};
     case VehicleStream::estimator:
       break;
   }
@@ -95,7 +98,7 @@ bool asked_of(VehicleStream stream, std::uint8_t autopilot) {
     case VehicleStream::estimator:
       return autopilot == kMavAutopilotArdupilot || autopilot == kMavAutopilotPx4;
     case VehicleStream::heading:
-      return autopilot == kMavAutopilotArdupilot;
+      return autopilot == kMavAutopilotArdupilot || autopilot == kMavAutopilotPx4;
     case VehicleStream::attitude:
     case VehicleStream::local_position_ned:
       break;
@@ -194,7 +197,8 @@ void VehicleStreams::on_message(const ReceivedMessage& message, HostTime now,
              std::holds_alternative<mavlink::EstimatorStatus>(message.message)) {
     // Either autopilot's: arriving is arriving, whichever was asked for.
     arrived(VehicleStream::estimator, now, notes);
-  } else if (std::holds_alternative<mavlink::Ahrs2>(message.message)) {
+  } else if (std::holds_alternative<mavlink::Ahrs2>(message.message) ||
+             std::holds_alternative<mavlink::HighresImu>(message.message)) {
     arrived(VehicleStream::heading, now, notes);
   } else if (const auto* ack = std::get_if<mavlink::CommandAck>(&message.message)) {
     on_ack(*ack, now, notes);

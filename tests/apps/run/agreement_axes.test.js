@@ -51,9 +51,13 @@ function trueAttitude([w, x, y, z]) {
 /// gives the body's raw q.
 /// With `px4`, a PX4 instead (autopilot 12) whose EKF2 fuses vision position and velocity but takes
 /// its yaw from the magnetometer (EKF2_EV_CTRL 7, answered bytewise as PX4 does): its ATTITUDE yaw
-/// is then the truth's, and it has no AHRS2.
-function externalNavVehicle(vehicle, sysid, truth, { px4 = false } = {}) {
-  const s = { odometry: null, ahrs2Asked: 0 };
+/// is then the truth's, and it has no AHRS2. With `visionYaw` as well, EKF2_EV_CTRL 15: its yaw is
+/// mocap's fed back, and its magnetometer (SYS_HAS_MAG 1) is sent in HIGHRES_IMU once asked for:
+/// Earth's field (0.2 G north, 0.4 G down) turned into the body by the truth's attitude.
+const EARTH_FIELD_NED = [0.2, 0, 0.4];
+const HIGHRES_IMU = 105;
+function externalNavVehicle(vehicle, sysid, truth, { px4 = false, visionYaw = false } = {}) {
+  const s = { odometry: null, ahrs2Asked: 0, imuAsked: 0 };
   let seq = 0;
   const send = (m) => vehicle.send(new MavLinkProtocolV2(sysid, 1).serialize(m, seq++ & 255));
   const bootStart = performance.now() - 60000;  // up for a minute: settled
@@ -69,13 +73,15 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false } = {}) {
       a.targetComponent = packet.header.compid;
       send(a);
       if (Math.round(m._param1) === AHRS2) s.ahrs2Asked += 1;
+      if (Math.round(m._param1) === HIGHRES_IMU) s.imuAsked += 1;
     }
     if (packet.header.msgid === PARAM_REQUEST_READ && m.targetSystem === sysid) {
       const v = new common.ParamValue();
       v.paramId = m.paramId.replace(/\0+$/, '');
       if (px4) {
         const bits = Buffer.alloc(4);
-        bits.writeInt32LE(v.paramId === 'EKF2_EV_CTRL' ? 7 : 0);
+        const values = { EKF2_EV_CTRL: visionYaw ? 15 : 7, SYS_HAS_MAG: 1 };
+        bits.writeInt32LE(values[v.paramId] ?? 0);
         v.paramType = 6;  // INT32, its bytes in the float (PX4's bytewise encoding)
         v.paramValue = bits.readFloatLE(0);
       } else {
@@ -102,6 +108,24 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false } = {}) {
     const bootMs = Math.round(performance.now() - bootStart);
     const [w, x, y, z] = o.q;
     const { roll, pitch, yaw } = trueAttitude(q);
+    if (px4 && s.imuAsked > 0) {
+      // Body field = Rᵀ · B with R = Rz(yaw) · Ry(pitch) · Rx(roll), by hand.
+      const [cr, sr, cp, sp, cy, sy] = [Math.cos(roll), Math.sin(roll), Math.cos(pitch),
+        Math.sin(pitch), Math.cos(yaw), Math.sin(yaw)];
+      const R = [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+      ];
+      const b = [0, 1, 2].map((j) => R[0][j] * EARTH_FIELD_NED[0] + R[1][j] * EARTH_FIELD_NED[1]
+        + R[2][j] * EARTH_FIELD_NED[2]);
+      const imu = new common.HighresImu();
+      imu.timeUsec = BigInt(Math.round((performance.now() - bootStart) * 1000));
+      [imu.xmag, imu.ymag, imu.zmag] = b;
+      imu.zacc = -9.81;
+      imu.fieldsUpdated = 0x1FF;  // accel, gyro and magnetometer of this sample
+      send(imu);
+    }
     if (s.ahrs2Asked > 0 && !px4) {
       const c = new ardupilotmega.Ahrs2();
       c.roll = roll;
@@ -113,8 +137,8 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false } = {}) {
     a.timeBootMs = bootMs;
     a.roll = roll;
     a.pitch = pitch;
-    // ArduPilot: mocap's, fed back; PX4: its magnetometer's, the truth.
-    a.yaw = px4 ? yaw : Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
+    // ArduPilot and PX4 on vision yaw: mocap's, fed back; PX4 on its magnetometer: the truth.
+    a.yaw = px4 && !visionYaw ? yaw : Math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z));
     send(a);
     const p = new common.LocalPositionNed();
     p.timeBootMs = bootMs;
@@ -126,7 +150,7 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false } = {}) {
   return s;
 }
 
-async function session(dir, name, up, vehicleKeys = {}, { px4 = false } = {}) {
+async function session(dir, name, up, vehicleKeys = {}, { px4 = false, visionYaw = false } = {}) {
   const link = await new h.UdpVehicle().bind();
   const config = h.writeConfig(path.join(dir, `${name}.toml`),
     'sim://?bodies=1&rate_hz=100', [{ name: 'quad', body: 'Body1',
@@ -147,7 +171,7 @@ async function session(dir, name, up, vehicleKeys = {}, { px4 = false } = {}) {
     } catch { /* the daemon stopping */ }
   }, 50);
   await h.waitFor(() => link.peer !== undefined, 10000, 'first datagrams');
-  const quad = externalNavVehicle(link, 1, () => truth, { px4 });
+  const quad = externalNavVehicle(link, 1, () => truth, { px4, visionYaw });
   const done = async () => {
     clearInterval(quad.timer);
     clearInterval(poll);
@@ -169,9 +193,9 @@ async function session(dir, name, up, vehicleKeys = {}, { px4 = false } = {}) {
   return { run, api, verdict, done, config, quad };
 }
 
-const NOT_CHECKABLE = 'yaw checked against AHRS2 (DCM with the compass) only, within 45°: the '
-  + "vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not checkable: the vehicle's "
-  + 'position comes from mocap (EK3_SRC1_POSXY = 6)';
+const NOT_CHECKABLE = 'yaw checked against its compass only (AHRS2, DCM with the compass: '
+  + "COMPASS_USE = 1), within 45°: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position "
+  + "not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
 
 async function main() {
   const dir = h.tempDir('agreement-axes');
@@ -180,6 +204,8 @@ async function main() {
   const nose = await session(dir, 'nose', '+z', { body_forward: '+y' });
   const bodyUp = await session(dir, 'bodyup', '+z', { body_up: '+y' });
   const px4Nose = await session(dir, 'px4nose', '+z', { body_forward: '+y' }, { px4: true });
+  const px4VisionNose = await session(dir, 'px4visionnose', '+z', { body_forward: '+y' },
+    { px4: true, visionYaw: true });
   try {
     const ok = await right.verdict('agree', 20000);
     assert.ok(ok.agreement.tilt_offset_deg < 5, JSON.stringify(ok.agreement));
@@ -248,6 +274,15 @@ async function main() {
       + 'mocap (EKF2_EV_CTRL = 7)'), px4Turned.reason);
     assert.equal(px4Nose.quad.ahrs2Asked, 0);  // never asked of PX4
     assert.deepEqual(px4Turned.checked, ['tilt', 'yaw'], JSON.stringify(px4Turned));
+    // PX4 on vision yaw: only its magnetometer (HIGHRES_IMU, asked for) sees the nose.
+    const px4Blind = (await px4VisionNose.verdict('disagree', 25000, (ag) => ag.fix !== null
+      && ag.fix.heading_residual_deg !== null)).agreement;
+    assert.ok(Math.abs(px4Blind.yaw_offset_deg) < 5, JSON.stringify(px4Blind));
+    assert.ok(Math.abs(Math.abs(px4Blind.heading_offset_deg) - 90) < 10, JSON.stringify(px4Blind));
+    assert.deepEqual(px4Blind.fix.lines, ['[[vehicle]] body_forward = "+x"'], JSON.stringify(px4Blind.fix));
+    assert.deepEqual(px4Blind.checked, ['tilt', 'compass'], JSON.stringify(px4Blind));
+    assert.ok(px4VisionNose.quad.imuAsked >= 1);
+    assert.equal(px4VisionNose.quad.ahrs2Asked, 0);
     console.log(`ok: right axes agree (tilt ${ok.agreement.tilt_offset_deg.toFixed(1)}°, compass `
       + `${ok.agreement.heading_offset_deg.toFixed(1)}°); up = "+y" disagrees (tilt `
       + `${a.tilt_offset_deg.toFixed(1)}°) with ${a.fix.text}; body_forward = "+y" disagrees `
@@ -258,6 +293,7 @@ async function main() {
     await nose.done();
     await bodyUp.done();
     await px4Nose.done();
+    await px4VisionNose.done();
   }
 }
 

@@ -76,9 +76,9 @@ TEST(EstimateSources, ArduPilotAhrs2IsAHeadingOfItsOwnOnlyWithTheCompassInUse) {
   EXPECT_EQ(in_use.heading.source, EstimateSource::independent);
   EXPECT_TRUE(checks_second_heading(in_use));
   EXPECT_EQ(describe_unchecked(in_use),
-            "yaw checked against AHRS2 (DCM with the compass) only, within 45°: the vehicle's "
-            "yaw comes from mocap (EK3_SRC1_YAW = 6); position not checkable: the vehicle's "
-            "position comes from mocap (EK3_SRC1_POSXY = 6)");
+            "yaw checked against its compass only (AHRS2, DCM with the compass: COMPASS_USE = "
+            "1), within 45°: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
+            "checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)");
   const auto unused = with({{"COMPASS_ENABLE", 1}, {"COMPASS_USE", 0}});
   EXPECT_EQ(unused.heading, (QuantitySource{EstimateSource::none,
                                             "COMPASS_USE = 0: AHRS2's yaw is the gyros' alone"}));
@@ -101,16 +101,33 @@ TEST(EstimateSources, ArduPilotAhrs2IsAHeadingOfItsOwnOnlyWithTheCompassInUse) {
   EXPECT_FALSE(checks_second_heading(compass_yaw));
   ASSERT_EQ(source_parameters(AutopilotFamily::ardupilot).size(), 2U);
   EXPECT_EQ(source_parameters(AutopilotFamily::ardupilot)[1], "COMPASS_USE");
-  EXPECT_TRUE(source_parameters(AutopilotFamily::px4).empty());
+  ASSERT_EQ(source_parameters(AutopilotFamily::px4).size(), 1U);
+  EXPECT_EQ(source_parameters(AutopilotFamily::px4)[0], "SYS_HAS_MAG");
+  EXPECT_TRUE(source_parameters(AutopilotFamily::other).empty());
 }
 
-TEST(EstimateSources, Px4HasNoSecondHeading) {
-  const auto s = estimate_sources(AutopilotFamily::px4, FirmwareVersion{1, 14, 3, 0},
-                                  SetupInput::vision, params({{"EKF2_EV_CTRL", 15}}));
-  EXPECT_EQ(s.heading.source, EstimateSource::none);
-  EXPECT_NE(describe_unchecked(s).value().find("no heading of its own (PX4 sends no heading "
-                                               "but EKF2's over MAVLink): the nose is unchecked"),
+TEST(EstimateSources, Px4WithVisionYawHasItsMagnetometerWhereItHasOne) {
+  // PX4 publishes its magnetometer (HIGHRES_IMU) whenever SYS_HAS_MAG = 1, whatever EKF2 fuses.
+  const FirmwareVersion v1_14{1, 14, 3, 0};
+  const auto with_mag = estimate_sources(AutopilotFamily::px4, v1_14, SetupInput::vision,
+                                         params({{"EKF2_EV_CTRL", 15}, {"SYS_HAS_MAG", 1}}));
+  EXPECT_EQ(with_mag.heading, (QuantitySource{EstimateSource::independent,
+                                              "the magnetometer in HIGHRES_IMU: SYS_HAS_MAG = 1"}));
+  EXPECT_TRUE(checks_second_heading(with_mag));
+  const auto no_mag = estimate_sources(AutopilotFamily::px4, v1_14, SetupInput::vision,
+                                       params({{"EKF2_EV_CTRL", 15}, {"SYS_HAS_MAG", 0}}));
+  EXPECT_EQ(no_mag.heading.source, EstimateSource::none);
+  EXPECT_NE(describe_unchecked(no_mag).value().find(
+                "and it has no heading of its own (SYS_HAS_MAG = 0: no magnetometer): the nose is "
+                "unchecked"),
             std::string::npos);
+  const auto unread = estimate_sources(AutopilotFamily::px4, v1_14, SetupInput::vision,
+                                       params({{"EKF2_EV_CTRL", 15}}));
+  EXPECT_EQ(unread.heading, (QuantitySource{EstimateSource::unknown, "SYS_HAS_MAG"}));
+  // Its own yaw (EKF2_EV_CTRL without bit 3) needs no second heading.
+  const auto mag_yaw = estimate_sources(AutopilotFamily::px4, v1_14, SetupInput::vision,
+                                        params({{"EKF2_EV_CTRL", 7}, {"SYS_HAS_MAG", 1}}));
+  EXPECT_FALSE(checks_second_heading(mag_yaw));
   EXPECT_EQ(px4_dds_sources().heading.source, EstimateSource::none);
 }
 

@@ -72,17 +72,18 @@ TEST(MessageTable, FrameSizesFollowTheMavlinkLengths) {
   // ATTITUDE 40 and LOCAL_POSITION_NED 40 at 5 Hz (the agreement check's request) and
   // ESTIMATOR_STATUS 54 (the larger of it and EKF_STATUS_REPORT 38) at 1 Hz (the set-up list's).
   EXPECT_DOUBLE_EQ(
-      link_bytes_per_second(messages_for(Profile::classic), 10.0, false),
-      (51.0 + 40.0 + 132.0) * 10.0 + 21.0 + 30.0 + 30.0 + 33.0 + (40.0 + 40.0 + 36.0) * 5.0 + 54.0);
+      link_bytes_per_second(Profile::classic, messages_for(Profile::classic), 10.0, false),
+      (51.0 + 40.0 + 132.0) * 10.0 + 21.0 + 30.0 + 30.0 + 33.0 + (40.0 + 40.0 + 75.0) * 5.0 + 54.0);
   // Signed: every frame 13 bytes longer, the vehicle's too.
-  EXPECT_DOUBLE_EQ(link_bytes_per_second(messages_for(Profile::classic), 10.0, true) -
-                       link_bytes_per_second(messages_for(Profile::classic), 10.0, false),
-                   13.0 * (3 * 10 + 4 + 3 * 5 + 1));
+  EXPECT_DOUBLE_EQ(
+      link_bytes_per_second(Profile::classic, messages_for(Profile::classic), 10.0, true) -
+          link_bytes_per_second(Profile::classic, messages_for(Profile::classic), 10.0, false),
+      13.0 * (3 * 10 + 4 + 3 * 5 + 1));
   EXPECT_FALSE(serial_bandwidth_warning(Profile::classic, messages_for(Profile::classic), 10.0,
                                         false, 57600));
   EXPECT_EQ(serial_bandwidth_warning(Profile::px4, messages_for(Profile::px4), 100.0, false, 9600),
-            "profile px4 at 100 Hz needs up to 25248 bytes/s (with the vehicle's ATTITUDE, "
-            "LOCAL_POSITION_NED and AHRS2 at 5 Hz and its estimator status at 1 Hz) but 9600 "
+            "profile px4 at 100 Hz needs up to 25443 bytes/s (with the vehicle's ATTITUDE, "
+            "LOCAL_POSITION_NED and HIGHRES_IMU at 5 Hz and its estimator status at 1 Hz) but 9600 "
             "baud carries 960: frames will be dropped; lower rate_hz or raise the baud rate");
 }
 

@@ -72,6 +72,12 @@ struct Vehicle {
       }
     } else if (const auto* r = std::get_if<mavlink::ParamRequestRead>(&sent)) {
       const std::string name = id_of(r->param_id);
+      // Every firmware has its compass parameters (read for the agreement's second heading,
+      // estimate_sources.hpp): answered as a vehicle with a compass unless the table says.
+      if (params.count(name) == 0 &&
+          (px4 ? name == "SYS_HAS_MAG" : name == "COMPASS_ENABLE" || name == "COMPASS_USE")) {
+        params[name] = {1, px4 ? kInt32 : kInt8};
+      }
       if (params.count(name) != 0) out.emplace_back(value(name));  // unknown: silence (both)
     } else if (const auto* s = std::get_if<mavlink::ParamSet>(&sent)) {
       const std::string name = id_of(s->param_id);
@@ -157,7 +163,8 @@ TEST(VehicleSetup, ReadsEachParameterOnceAndFindsTheWrongOnes) {
   EXPECT_EQ(snap.autopilot, AutopilotFamily::px4);
   ASSERT_TRUE(snap.version);
   EXPECT_EQ(to_string(*snap.version), "1.14.3");
-  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 5U);  // one each, all answered
+  // One each, all answered: the 5 of the list and SYS_HAS_MAG (the agreement's second heading).
+  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 6U);
   EXPECT_EQ(snap.state, SetupState::blocked);
   const SetupLine* ev = h.line("EKF2_EV_CTRL");
   ASSERT_NE(ev, nullptr);
@@ -191,7 +198,7 @@ TEST(VehicleSetup, AMissingParameterIsAskedThreeTimesThenMissing) {
   px4_defaults(h.vehicle);
   h.vehicle.params.erase("EKF2_EV_CTRL");  // e.g. a build without it
   h.run(6000);
-  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 4U + kParamAttempts);
+  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 5U + kParamAttempts);
   const SetupLine* ev = h.line("EKF2_EV_CTRL");
   ASSERT_NE(ev, nullptr);
   EXPECT_EQ(ev->item.status, SetupStatus::missing);
@@ -205,7 +212,7 @@ TEST(VehicleSetup, NoAnswerAtAll) {
   h.run(30000);
   EXPECT_EQ(h.times_of<mavlink::CommandLong>().size(), kVersionAttempts);
   EXPECT_EQ(h.setup.state(), SetupState::no_answer);
-  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 5U * kParamAttempts);
+  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 6U * kParamAttempts);
   EXPECT_TRUE(std::any_of(h.notes.begin(), h.notes.end(), [](const std::string& n) {
     return n.find("newest firmware's parameter names") != std::string::npos;
   }));

@@ -510,7 +510,7 @@ TEST(VehicleAgreement, UpAxisMistakeWithExternalNavYawDisagreesOnGravity) {
 EstimateSources external_nav_with_compass() {
   EstimateSources s{{EstimateSource::mocap, "EK3_SRC1_YAW = 6"},
                     {EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}};
-  s.heading = {EstimateSource::independent, "AHRS2 (DCM with the compass), COMPASS_USE = 1"};
+  s.heading = {EstimateSource::independent, "AHRS2, DCM with the compass: COMPASS_USE = 1"};
   return s;
 }
 
@@ -574,6 +574,48 @@ TEST(VehicleAgreement, ACompassWithin45DegreesAgreesAndItsAbsenceKeepsTheVerdict
   EXPECT_EQ(stream_with_heading(v, mocap, kPi, 4'600, 8'000, AgreementVerdict::disagree), -1);
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
   EXPECT_FALSE(v.agreement().heading_offset_deg);  // AHRS2 arriving, not compared
+}
+
+TEST(MagneticHeading, IsTheLevelledFieldsDirection) {
+  // Earth's field 0.2 G north, 0.4 G down. Nose east, level: the body (x east, y south, z down)
+  // sees (0, -0.2, 0.4), heading 90°.
+  EXPECT_NEAR(magnetic_heading_rad({0.0, -0.2, 0.4}, 0.0, 0.0), kPi / 2, 1e-12);
+  // Nose north, rolled 10° right: the body sees (0.2, 0.4 sin 10°, 0.4 cos 10°); read untilted
+  // that is -19.2°, levelled it is north.
+  const double r = 10.0 * kPi / 180.0;
+  EXPECT_NEAR(magnetic_heading_rad({0.2, 0.4 * std::sin(r), 0.4 * std::cos(r)}, r, 0.0), 0.0,
+              1e-12);
+  EXPECT_TRUE(std::isnan(magnetic_heading_rad({0.0, 0.0, 0.4}, 0.0, 0.0)));
+}
+
+TEST(VehicleAgreement, Px4NoseMistakeWithVisionYawDisagreesOnItsMagnetometer) {
+  // PX4 with EKF2_EV_CTRL 15 reports mocap's yaw back; its magnetometer (HIGHRES_IMU) says the
+  // nose is east while mocap says north.
+  VehicleState v(VehicleStateConfig{});
+  EstimateSources s{{EstimateSource::mocap, "EKF2_EV_CTRL = 15"},
+                    {EstimateSource::mocap, "EKF2_EV_CTRL = 15"}};
+  s.heading = {EstimateSource::independent, "the magnetometer in HIGHRES_IMU: SYS_HAS_MAG = 1"};
+  (void)v.set_estimate_sources(s, HostTime{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  mavlink::HighresImu imu;
+  imu.xmag = 0.0F;
+  imu.ymag = -0.2F;
+  imu.zmag = 0.4F;
+  imu.fields_updated = 0x1FF;  // accel, gyro, mag
+  std::int64_t first = -1;
+  for (std::int64_t t = 0; t <= 5'000; t += 200) {
+    (void)v.on_message(from(1, 1, imu), at_ms(t), &mocap);
+    const auto r = stream(v, mocap, 0.0, 0.0F, t, t, -60'000, AgreementVerdict::disagree);
+    if (first < 0 && r >= 0) first = r;
+  }
+  EXPECT_EQ(first, 3'000);
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 90.0, 1e-3);
+  // A sample without the magnetometer's bits is not a field.
+  imu.fields_updated = 0x3F;
+  imu.ymag = 0.2F;
+  (void)v.on_message(from(1, 1, imu), at_ms(5'100), &mocap);
+  (void)stream(v, mocap, 0.0, 0.0F, 5'200, 5'200, -60'000, AgreementVerdict::agree);
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 90.0, 1e-3);
 }
 
 TEST(VehicleAgreement, PositionOffsetDisagreesAndLostMocapIsIgnored) {

@@ -477,22 +477,30 @@ TEST(VehicleStreams, Ahrs2IsAskedOfAnArduPilotOnlyWhileItsHeadingIsWanted) {
   EXPECT_EQ(h.commands().size(), 1U);
   EXPECT_EQ(data_stream_id(VehicleStream::heading), 12);  // EXTRA3 on ArduPilot
   EXPECT_TRUE(asked_of(VehicleStream::heading, kMavAutopilotArdupilot));
-  EXPECT_FALSE(asked_of(VehicleStream::heading, kMavAutopilotPx4));
+  EXPECT_TRUE(asked_of(VehicleStream::heading, kMavAutopilotPx4));
+  EXPECT_FALSE(asked_of(VehicleStream::heading, 0));
 }
 
-TEST(VehicleStreams, Px4IsNeverAskedForAhrs2) {
+TEST(VehicleStreams, Px4IsAskedForHighresImuInstead) {
+  // PX4 has no AHRS2; its magnetometer's field is in HIGHRES_IMU (105).
   Harness h;
   h.estimator_streams = false;
   h.target.autopilot = kMavAutopilotPx4;
   h.target.want_heading = true;
-  for (std::int64_t t = 0; t <= 10'000; t += 100) {
+  for (std::int64_t t = 0; t <= 3'300; t += 100) {
     h.tick_to(t);
     h.receive(attitude(static_cast<std::uint32_t>(t)));
     h.receive(position(static_cast<std::uint32_t>(t)));
     h.receive(mavlink::EstimatorStatus{});
   }
-  EXPECT_TRUE(h.commands().empty());
-  EXPECT_EQ(h.state(VehicleStream::heading), StreamState::idle);
+  const auto commands = h.commands();
+  ASSERT_EQ(commands.size(), 1U);
+  EXPECT_EQ(commands[0].param1, 105.0F);
+  EXPECT_EQ(commands[0].param2, 200'000.0F);
+  EXPECT_EQ(mavlink_name(VehicleStream::heading, kMavAutopilotPx4), "HIGHRES_IMU");
+  h.receive(ack(0));
+  h.receive(mavlink::HighresImu{});
+  EXPECT_EQ(h.state(VehicleStream::heading), StreamState::arriving);
 }
 
 TEST(VehicleStreams, MessagesFromOtherSystemsCountForNothing) {

@@ -23,8 +23,11 @@
 // used for yaw (AP_AHRS_DCM::use_compass: COMPASS_ENABLE and COMPASS_USE set, the compass
 // healthy), whatever EK3_SRC1_YAW says. So with COMPASS_ENABLE = 1 and COMPASS_USE = 1 AHRS2's
 // yaw is a heading of the vehicle's own; with either 0, DCM's yaw only integrates the gyros from
-// wherever it started, and is no reference (`none`). PX4 sends no second heading over MAVLink
-// (ATTITUDE and VFR_HUD both carry EKF2's yaw): `none`. Pure.
+// wherever it started, and is no reference (`none`). PX4's ATTITUDE and VFR_HUD both carry EKF2's
+// yaw, but HIGHRES_IMU carries its magnetometer's field (vehicle_magnetometer less EKF2's bias,
+// body FRD, gauss; v1.14 streams/HIGHRES_IMU.hpp), published whenever SYS_HAS_MAG = 1 whatever
+// EKF2 fuses: tilt-compensated with ATTITUDE's roll and pitch it is a magnetic heading of the
+// vehicle's own. SYS_HAS_MAG = 0 → `none`. Over uXRCE-DDS nothing is read: `none`. Pure.
 #pragma once
 
 #include <cstdint>
@@ -59,9 +62,9 @@ struct EstimateSources {
   QuantitySource yaw;
   QuantitySource position;
   /// A second heading to check mocap's yaw against when `yaw` comes from mocap: independent
-  /// (ArduPilot's AHRS2 with the compass in use), none (no compass in use, PX4), unknown (the
-  /// deciding parameters not read yet). `none` with an empty basis when `yaw` is not from mocap:
-  /// the yaw itself is then the heading.
+  /// (ArduPilot's AHRS2 with the compass in use, PX4's magnetometer), none (no compass), unknown
+  /// (the deciding parameters not read yet). `none` with an empty basis when `yaw` is not from
+  /// mocap: the yaw itself is then the heading.
   QuantitySource heading{EstimateSource::none, {}};
   friend bool operator==(const EstimateSources&, const EstimateSources&) = default;
 };
@@ -81,11 +84,9 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
 [[nodiscard]] bool checks_second_heading(const EstimateSources& sources);
 
 /// The parameters the sources are decided by that the set-up list has no rule for, read with
-/// it: ArduPilot's COMPASS_ENABLE and COMPASS_USE (the second heading); none for others.
+/// it: ArduPilot's COMPASS_ENABLE and COMPASS_USE, PX4's SYS_HAS_MAG (the second heading); none
+/// for others.
 [[nodiscard]] std::span<const std::string_view> source_parameters(AutopilotFamily autopilot);
-
-/// The heading AHRS2 gives as the agreement check names it ("AHRS2, DCM with the compass").
-inline constexpr std::string_view kSecondHeadingName = "AHRS2 (DCM with the compass)";
 
 /// A PX4 fed over uXRCE-DDS (VehicleLink::px4_dds): its parameters cannot be read there, and
 /// its vision topic exists to be fused, so both are taken to come from mocap — they can still
@@ -101,8 +102,9 @@ inline constexpr std::string_view kSecondHeadingName = "AHRS2 (DCM with the comp
 /// Both, joined with "; " (yaw first); nullopt when both are independent: the sentence the log
 /// and the dashboard's `agreement.reason` give for what the check did not measure. A yaw from
 /// mocap with an independent second heading is named as checked against that heading only
-/// ("yaw checked against AHRS2 (DCM with the compass) only, within 45°: the vehicle's yaw comes
-/// from mocap (EK3_SRC1_YAW = 6)"); without one the sentence says why there is none.
+/// ("yaw checked against its compass only (AHRS2, DCM with the compass: COMPASS_USE = 1), within
+/// 45°: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6)"); without one the sentence says
+/// why there is none.
 [[nodiscard]] std::optional<std::string> describe_unchecked(const EstimateSources& sources);
 
 }  // namespace mocaplink::core

@@ -46,9 +46,11 @@
 //               not make an agreement, and while the deciding parameter is not known the verdict
 //               stays unknown rather than agree.
 //               A second heading (issue 48): where the vehicle's yaw is mocap's but it has a
-//               heading of its own (ArduPilot's AHRS2 with the compass in use, sources.heading
-//               independent), each ATTITUDE also compares mocap's yaw with the latest AHRS2 yaw
-//               received within kHeadingFresh (heading offset, deg, AHRS2 − mocap); beyond
+//               heading of its own (ArduPilot's AHRS2 with the compass in use, PX4's
+//               magnetometer in HIGHRES_IMU: sources.heading independent), each ATTITUDE also
+//               compares mocap's yaw with the latest AHRS2 yaw, or the magnetometer's heading
+//               tilt-compensated with that ATTITUDE's roll and pitch, received within
+//               kHeadingFresh (heading offset, deg, compass − mocap); beyond
 //               kMaxHeadingOffsetDeg (45°: a compass indoors is 10–30° off, a nose mistake 90°
 //               or 180°) it disagrees like the others, and while such a heading is wanted an
 //               agreement needs it too.
@@ -207,9 +209,9 @@ struct Agreement {
   std::optional<double> roll_rad;
   std::optional<double> pitch_rad;
   std::optional<double> yaw_rad;  ///< its yaw: a heading of its own when sources.yaw is independent
-  /// AHRS2 yaw − mocap yaw (deg, (−180, 180]) where sources.heading is independent.
+  /// The compass heading − mocap yaw (deg, (−180, 180]) where sources.heading is independent.
   std::optional<double> heading_offset_deg;
-  std::optional<double> heading_rad;  ///< the AHRS2 yaw compared (rad, NED)
+  std::optional<double> heading_rad;  ///< the compass heading compared (rad, NED)
   /// While the verdict is disagree: the axis settings that make mocap agree with the vehicle at
   /// rest (the Bridge's set_axis_fix, axis_fix.hpp); cleared with the verdict.
   std::optional<AxisFix> fix;
@@ -340,6 +342,8 @@ class VehicleState {
   std::optional<double> vehicle_heading_offset_deg_;
   std::optional<double> ahrs2_yaw_rad_;  ///< the vehicle's latest AHRS2 yaw, received at:
   std::optional<HostTime> ahrs2_received_;
+  std::optional<Eigen::Vector3d> mag_frd_;  ///< its latest HIGHRES_IMU field (gauss), at:
+  std::optional<HostTime> mag_received_;
   Agreement agreement_;
   VehicleCounters counters_;
 };
@@ -348,6 +352,13 @@ class VehicleState {
 /// for its poses' time stamps ("clock steady (+12 ppm ...)"); `autopilot` is its MAV_AUTOPILOT.
 [[nodiscard]] std::string vehicle_clock_text(const VehicleClockFigures& clock,
                                              std::uint8_t autopilot);
+
+/// The magnetic heading (rad, NED yaw) of a body measuring `field_frd` (any unit) while rolled
+/// and pitched as given: the field turned level (Ry(pitch) · Rx(roll) · field), then
+/// atan2(−y, x) — Earth's field points north and down, so a nose turned ψ east of it sees its
+/// horizontal part at −ψ. NaN when the field has no horizontal part.
+[[nodiscard]] double magnetic_heading_rad(const Eigen::Vector3d& field_frd, double roll_rad,
+                                          double pitch_rad);
 
 /// Wraps an angle in degrees to (−180, 180].
 [[nodiscard]] double wrap_deg_180(double degrees);

@@ -2,9 +2,10 @@
 // and LOCAL_POSITION_NED (32), when they do not arrive by themselves (issue 31), and for its
 // estimator's health, which the set-up list shows in words (issue 28): EKF_STATUS_REPORT (193)
 // from ArduPilot, ESTIMATOR_STATUS (230) from PX4, at 1 Hz; the estimator's is never asked of
-// another autopilot. And, of an ArduPilot whose yaw comes from mocap and whose compass is in use,
-// AHRS2 (178): DCM's heading, the one reference for the nose left (estimate_sources.hpp, issue
-// 48), at 5 Hz, asked only while the Bridge says it is wanted (StreamTarget::want_heading).
+// another autopilot. And, of a vehicle whose yaw comes from mocap but which has a compass, its
+// heading: AHRS2 (178, DCM's heading) of ArduPilot, HIGHRES_IMU (105, the magnetometer) of PX4 —
+// the one reference for the nose left (estimate_sources.hpp, issue 48), at 5 Hz, asked only
+// while the Bridge says it is wanted (StreamTarget::want_heading).
 // Pure: time is passed in; one per vehicle, owned by the Bridge.
 //
 // Why: ArduCopter's default stream rates for EXTRA1 (ATTITUDE), POSITION (LOCAL_POSITION_NED) and
@@ -72,7 +73,7 @@ enum class VehicleStream : std::uint8_t {
   attitude,            ///< ATTITUDE (30): yaw, for the agreement check
   local_position_ned,  ///< LOCAL_POSITION_NED (32): position, for the agreement check
   estimator,           ///< EKF_STATUS_REPORT (193, ArduPilot) / ESTIMATOR_STATUS (230, PX4)
-  heading,             ///< AHRS2 (178, ArduPilot): a heading of its own when its yaw is mocap's
+  heading,  ///< AHRS2 (178, ArduPilot) / HIGHRES_IMU (105, PX4): its own heading, yaw from mocap
 };
 inline constexpr std::size_t kVehicleStreamCount = 4;
 inline constexpr std::array<VehicleStream, kVehicleStreamCount> kVehicleStreams{
@@ -81,17 +82,19 @@ inline constexpr std::array<VehicleStream, kVehicleStreamCount> kVehicleStreams{
 /// The two the agreement check compares (its reason names what is missing of them).
 inline constexpr std::array<VehicleStream, 2> kAgreementStreams{VehicleStream::attitude,
                                                                 VehicleStream::local_position_ned};
-/// "ATTITUDE", "LOCAL_POSITION_NED", "AHRS2"; the estimator's is "EKF_STATUS_REPORT" on
-/// ArduPilot (`autopilot` 3), "ESTIMATOR_STATUS" on anything else.
+/// "ATTITUDE", "LOCAL_POSITION_NED"; the estimator's is "EKF_STATUS_REPORT" on ArduPilot
+/// (`autopilot` 3), "ESTIMATOR_STATUS" on anything else; the heading's "HIGHRES_IMU" on PX4 (12),
+/// "AHRS2" on anything else.
 [[nodiscard]] std::string_view mavlink_name(VehicleStream stream, std::uint8_t autopilot = 0);
-/// 30, 32, 178; the estimator's 193 on ArduPilot, 230 on anything else.
+/// 30, 32; the estimator's 193 on ArduPilot, 230 on anything else; the heading's 105 on PX4, 178
+/// on anything else.
 [[nodiscard]] std::uint32_t message_id(VehicleStream stream, std::uint8_t autopilot = 0);
 /// ArduPilot's stream group carrying it (MAV_DATA_STREAM): EXTRA1 = 10, POSITION = 6, EXTRA3 = 12.
 [[nodiscard]] std::uint8_t data_stream_id(VehicleStream stream);
 /// "EXTRA1", "POSITION", "EXTRA3" (the estimator's and AHRS2).
 [[nodiscard]] std::string_view data_stream_name(VehicleStream stream);
 /// Whether it is asked of this autopilot: the estimator's only of ArduPilot (3) and PX4 (12),
-/// AHRS2 only of ArduPilot (and then only when wanted).
+/// the heading's of both (and then only when wanted).
 [[nodiscard]] bool asked_of(VehicleStream stream, std::uint8_t autopilot);
 
 /// 5 Hz: a yaw or position check before take-off needs a fresh value, not a fast one (the
