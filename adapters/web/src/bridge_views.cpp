@@ -186,7 +186,8 @@ std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot
   // A disagreement also names its fix first (axis_fix.hpp).
   if (in.vehicle.agreement.verdict != core::AgreementVerdict::unknown) {
     const auto& fix = in.vehicle.agreement.fix;
-    const auto unchecked = core::describe_unchecked(in.vehicle.agreement.sources);
+    const auto unchecked = core::describe_unchecked(
+        in.vehicle.agreement.sources, in.vehicle.agreement.heading_offset_deg.has_value());
     if (fix && unchecked) return fix->text + "; " + *unchecked;
     if (fix) return fix->text;
     return unchecked;
@@ -230,12 +231,14 @@ std::optional<std::string> agreement_reason(const core::BridgeSnapshot& snapshot
 }
 
 /// What the agreement measured independently (docs/api.md `agreement.checked`): gravity
-/// always, yaw and position where they are the vehicle's own, the compass where it is asked.
-std::vector<std::string> checked_quantities(const core::EstimateSources& sources) {
+/// always, yaw and position where they are the vehicle's own, the compass where it was compared.
+std::vector<std::string> checked_quantities(const core::Agreement& a) {
   std::vector<std::string> out{"tilt"};
-  if (sources.yaw.source == core::EstimateSource::independent) out.emplace_back("yaw");
-  if (sources.position.source == core::EstimateSource::independent) out.emplace_back("position");
-  if (core::checks_second_heading(sources)) out.emplace_back("compass");
+  if (a.sources.yaw.source == core::EstimateSource::independent) out.emplace_back("yaw");
+  if (a.sources.position.source == core::EstimateSource::independent) {
+    out.emplace_back("position");
+  }
+  if (core::checks_second_heading(a.sources) && a.heading_offset_deg) out.emplace_back("compass");
   return out;
 }
 
@@ -363,7 +366,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
                                 state.agreement.position_offset_m,
                                 agreement_reason(snapshot, in, v), state.agreement.tilt_offset_deg};
     v.agreement.heading_offset_deg = state.agreement.heading_offset_deg;
-    v.agreement.checked = checked_quantities(state.agreement.sources);
+    v.agreement.checked = checked_quantities(state.agreement);
     if (const auto& fix = state.agreement.fix) {
       v.agreement.fix = AxisFixView{std::string(core::to_string(fix->kind)),
                                     fix->lines,

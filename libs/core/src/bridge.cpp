@@ -483,11 +483,13 @@ void Bridge::vehicle_events(std::size_t index, const VehicleReaction& reaction, 
       text += ", position offset " + std::to_string(*a.position_offset_m) + " m";
     }
     if (a.heading_offset_deg) {
-      text += ", heading offset " + std::to_string(*a.heading_offset_deg) + " deg (AHRS2)";
+      text += ", compass offset " + std::to_string(*a.heading_offset_deg) + " deg";
     }
     if (a.settling) text += " (the vehicle booted moments ago: compared once it has settled)";
     if (a.fix) text += "; " + a.fix->text;
-    if (const auto unchecked = describe_unchecked(a.sources)) text += "; " + *unchecked;
+    if (const auto unchecked = describe_unchecked(a.sources, a.heading_offset_deg.has_value())) {
+      text += "; " + *unchecked;
+    }
     out.events.push_back({BridgeEventKind::agreement, now, index, v.spec.name, text});
   }
   if (reaction.clock_changed) {
@@ -527,8 +529,14 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
   }
   vehicle_events(vehicle, sources, received, out);
   const VehicleReaction reaction = v.state.on_message(message, received, &mocap);
-  if (reaction.agreement_changed || fix_lacks_heading(v.state)) {
+  if (reaction.agreement_changed) {
     name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, mocap, v.state);
+  } else if (fix_lacks_heading(v.state)) {
+    name_axis_fix(config_.world, v.spec.body_axes, config_.source_up, mocap, v.state);
+    if (const auto& fix = v.state.agreement().fix) {
+      out.events.push_back({BridgeEventKind::agreement, received, vehicle, v.spec.name,
+                            "named again with the vehicle's compass heading: " + fix->text});
+    }
   }
   if (reaction.timesync_reply && v.spec.enabled) {
     v.sender.send(*reaction.timesync_reply, received, signing_now_10us(received), out.messages);

@@ -169,15 +169,18 @@ std::optional<std::string> describe_unchecked(std::string_view what, const Quant
   return std::nullopt;
 }
 
-std::optional<std::string> describe_unchecked(const EstimateSources& sources) {
+std::optional<std::string> describe_unchecked(const EstimateSources& sources,
+                                              bool heading_compared) {
   std::optional<std::string> yaw = describe_unchecked("yaw", sources.yaw);
   if (sources.yaw.source == EstimateSource::mocap) {
     const QuantitySource& h = sources.heading;
     char limit[16];
     std::snprintf(limit, sizeof limit, "%g", kMaxHeadingOffsetDeg);
-    if (h.source == EstimateSource::independent) {
-      yaw = "yaw checked against its compass only (" + h.basis + "), within " + limit +
-            "°: the vehicle's yaw comes from mocap (" + sources.yaw.basis + ")";
+    if (h.source == EstimateSource::independent && heading_compared) {
+      yaw = "yaw compared with its compass only (" + h.basis + "), " + limit +
+            "° allowed: the vehicle's yaw comes from mocap (" + sources.yaw.basis + ")";
+    } else if (h.source == EstimateSource::independent) {
+      *yaw += "; its compass heading (" + h.basis + ") has not arrived: the nose is unchecked";
     } else if (h.source == EstimateSource::none && !h.basis.empty()) {
       *yaw += ", and it has no heading of its own (" + h.basis + "): the nose is unchecked";
     } else if (h.source == EstimateSource::unknown) {

@@ -76,9 +76,15 @@ TEST(EstimateSources, ArduPilotAhrs2IsAHeadingOfItsOwnOnlyWithTheCompassInUse) {
   EXPECT_EQ(in_use.heading.source, EstimateSource::independent);
   EXPECT_TRUE(checks_second_heading(in_use));
   EXPECT_EQ(describe_unchecked(in_use),
-            "yaw checked against its compass only (AHRS2, DCM with the compass: COMPASS_USE = "
-            "1), within 45°: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
+            "yaw compared with its compass only (AHRS2, DCM with the compass: COMPASS_USE = 1), "
+            "45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
             "checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)");
+  // Wanted but not arrived: not claimed.
+  EXPECT_EQ(describe_unchecked(in_use, false),
+            "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); its compass "
+            "heading (AHRS2, DCM with the compass: COMPASS_USE = 1) has not arrived: the nose is "
+            "unchecked; position not checkable: the vehicle's position comes from mocap "
+            "(EK3_SRC1_POSXY = 6)");
   const auto unused = with({{"COMPASS_ENABLE", 1}, {"COMPASS_USE", 0}});
   EXPECT_EQ(unused.heading, (QuantitySource{EstimateSource::none,
                                             "COMPASS_USE = 0: AHRS2's yaw is the gyros' alone"}));

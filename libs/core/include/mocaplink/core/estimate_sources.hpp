@@ -101,10 +101,11 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
 
 /// Both, joined with "; " (yaw first); nullopt when both are independent: the sentence the log
 /// and the dashboard's `agreement.reason` give for what the check did not measure. A yaw from
-/// mocap with an independent second heading is named as checked against that heading only
-/// ("yaw checked against its compass only (AHRS2, DCM with the compass: COMPASS_USE = 1), within
-/// 45°: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6)"); without one the sentence says
-/// why there is none.
-[[nodiscard]] std::optional<std::string> describe_unchecked(const EstimateSources& sources);
+/// mocap with an independent second heading that was compared (`heading_compared`) is named as
+/// compared with that heading only ("yaw compared with its compass only (AHRS2, DCM with the
+/// compass: COMPASS_USE = 1), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW =
+/// 6)"); one not compared (not arrived) says so; without one the sentence says why there is none.
+[[nodiscard]] std::optional<std::string> describe_unchecked(const EstimateSources& sources,
+                                                            bool heading_compared = true);
 
 }  // namespace mocaplink::core
