@@ -234,7 +234,7 @@ double link_bytes_per_second(Profile profile, const MessageSet& messages, double
   // From the vehicle: ATTITUDE and LOCAL_POSITION_NED at the rate the agreement check asks for
   // (vehicle_streams.hpp). A UART carries each direction on its own wire, but a telemetry radio
   // shares one air channel between both, so the bound counts them (signed like ours).
-  // The heading's at that rate too (ArduPilot's AHRS2, PX4's HIGHRES_IMU, the larger where the
+  // The heading's at kHeadingRateHz (ArduPilot's AHRS2, PX4's HIGHRES_IMU, the larger where the
   // profile does not say), asked only of a vehicle whose yaw is mocap's (an upper bound counts
   // it). And the estimator's health the set-up list asks for at 1 Hz (the larger of
   // ArduPilot's and PX4's message).
@@ -243,7 +243,7 @@ double link_bytes_per_second(Profile profile, const MessageSet& messages, double
                           mavlink::LocalPositionNed::kMaxLength) *
           kStreamRateHz +
       static_cast<double>(heading.payload_bytes == 0 ? 0 : frame + heading.payload_bytes) *
-          kStreamRateHz +
+          kHeadingRateHz +
       static_cast<double>(frame + std::max(mavlink::EkfStatusReport::kMaxLength,
                                            mavlink::EstimatorStatus::kMaxLength)) *
           kEstimatorRateHz;
@@ -262,16 +262,18 @@ std::optional<std::string> serial_bandwidth_warning(Profile profile, const Messa
   if (needed <= available) return std::nullopt;
   // autopilots.md §7: a full ODOMETRY frame is 245 bytes; 57600 baud carries ~23/s.
   const std::string_view heading = heading_stream(profile).name;
-  const std::string streams = heading.empty()
-                                  ? "ATTITUDE and LOCAL_POSITION_NED"
-                                  : "ATTITUDE, LOCAL_POSITION_NED and " + std::string(heading);
+  char also[64] = "";
+  if (!heading.empty()) {
+    std::snprintf(also, sizeof also, ", its %.*s at %g Hz", static_cast<int>(heading.size()),
+                  heading.data(), kHeadingRateHz);
+  }
   char text[320];
   std::snprintf(text, sizeof text,
-                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's %s at %g Hz "
-                "and its estimator status at 1 Hz) but %u baud carries %.0f: frames will be "
-                "dropped; lower rate_hz or raise the baud rate",
+                "profile %.*s at %g Hz needs up to %.0f bytes/s (with the vehicle's ATTITUDE "
+                "and LOCAL_POSITION_NED at %g Hz%s and its estimator status at 1 Hz) but %u "
+                "baud carries %.0f: frames will be dropped; lower rate_hz or raise the baud rate",
                 static_cast<int>(to_string(profile).size()), to_string(profile).data(), rate_hz,
-                needed, streams.c_str(), kStreamRateHz, baud, available);
+                needed, kStreamRateHz, also, baud, available);
   return std::string(text);
 }
 

@@ -107,11 +107,29 @@ bool asked_of(VehicleStream stream, std::uint8_t autopilot) {
 }
 
 double rate_hz(VehicleStream stream) {
-  return stream == VehicleStream::estimator ? kEstimatorRateHz : kStreamRateHz;
+  switch (stream) {
+    case VehicleStream::estimator:
+      return kEstimatorRateHz;
+    case VehicleStream::heading:
+      return kHeadingRateHz;
+    case VehicleStream::attitude:
+    case VehicleStream::local_position_ned:
+      break;
+  }
+  return kStreamRateHz;
 }
 
 std::int32_t interval_us(VehicleStream stream) {
-  return stream == VehicleStream::estimator ? kEstimatorIntervalUs : kStreamIntervalUs;
+  switch (stream) {
+    case VehicleStream::estimator:
+      return kEstimatorIntervalUs;
+    case VehicleStream::heading:
+      return kHeadingIntervalUs;
+    case VehicleStream::attitude:
+    case VehicleStream::local_position_ned:
+      break;
+  }
+  return kStreamIntervalUs;
 }
 
 std::string_view to_string(StreamState state) {

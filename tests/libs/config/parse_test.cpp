@@ -568,10 +568,10 @@ TEST(ParseConfig, SerialLinkTooSlowForTheProfileIsAWarning) {
   // carries 5760 bytes/s.
   EXPECT_EQ(warning_lines(slow),
             (std::vector<std::string>{
-                "s.toml:6:8: vehicle[1].link: profile px4 at 50 Hz needs up to 13193 bytes/s (with "
-                "the vehicle's ATTITUDE, LOCAL_POSITION_NED and HIGHRES_IMU at 5 Hz and its "
-                "estimator status at 1 Hz) but 57600 baud carries 5760: frames will be dropped; "
-                "lower rate_hz or raise the baud rate"}));
+                "s.toml:6:8: vehicle[1].link: profile px4 at 50 Hz needs up to 12968 bytes/s (with "
+                "the vehicle's ATTITUDE and LOCAL_POSITION_NED at 5 Hz, its HIGHRES_IMU at 2 Hz "
+                "and its estimator status at 1 Hz) but 57600 baud carries 5760: frames will be "
+                "dropped; lower rate_hz or raise the baud rate"}));
   const auto fast = parse_config(vehicle("921600"), "f.toml");
   ASSERT_TRUE(fast.ok());
   EXPECT_THAT(fast.warnings, testing::IsEmpty());

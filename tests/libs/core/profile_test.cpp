@@ -73,18 +73,20 @@ TEST(MessageTable, FrameSizesFollowTheMavlinkLengths) {
   // ESTIMATOR_STATUS 54 (the larger of it and EKF_STATUS_REPORT 38) at 1 Hz (the set-up list's).
   EXPECT_DOUBLE_EQ(
       link_bytes_per_second(Profile::classic, messages_for(Profile::classic), 10.0, false),
-      (51.0 + 40.0 + 132.0) * 10.0 + 21.0 + 30.0 + 30.0 + 33.0 + (40.0 + 40.0 + 75.0) * 5.0 + 54.0);
+      (51.0 + 40.0 + 132.0) * 10.0 + 21.0 + 30.0 + 30.0 + 33.0 + (40.0 + 40.0) * 5.0 + 75.0 * 2.0 +
+          54.0);
   // Signed: every frame 13 bytes longer, the vehicle's too.
   EXPECT_DOUBLE_EQ(
       link_bytes_per_second(Profile::classic, messages_for(Profile::classic), 10.0, true) -
           link_bytes_per_second(Profile::classic, messages_for(Profile::classic), 10.0, false),
-      13.0 * (3 * 10 + 4 + 3 * 5 + 1));
+      13.0 * (3 * 10 + 4 + 2 * 5 + 2 + 1));
   EXPECT_FALSE(serial_bandwidth_warning(Profile::classic, messages_for(Profile::classic), 10.0,
                                         false, 57600));
   EXPECT_EQ(serial_bandwidth_warning(Profile::px4, messages_for(Profile::px4), 100.0, false, 9600),
-            "profile px4 at 100 Hz needs up to 25443 bytes/s (with the vehicle's ATTITUDE, "
-            "LOCAL_POSITION_NED and HIGHRES_IMU at 5 Hz and its estimator status at 1 Hz) but 9600 "
-            "baud carries 960: frames will be dropped; lower rate_hz or raise the baud rate");
+            "profile px4 at 100 Hz needs up to 25218 bytes/s (with the vehicle's ATTITUDE and "
+            "LOCAL_POSITION_NED at 5 Hz, its HIGHRES_IMU at 2 Hz and its estimator status at 1 "
+            "Hz) but 9600 baud carries 960: frames will be dropped; lower rate_hz or raise the "
+            "baud rate");
 }
 
 TEST(MessageTable, NamesListEveryKindInEnumOrder) {

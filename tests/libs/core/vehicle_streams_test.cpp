@@ -465,8 +465,8 @@ TEST(VehicleStreams, Ahrs2IsAskedOfAnArduPilotOnlyWhileItsHeadingIsWanted) {
   auto commands = h.commands();
   ASSERT_EQ(commands.size(), 1U);
   EXPECT_EQ(commands[0].param1, 178.0F);      // AHRS2
-  EXPECT_EQ(commands[0].param2, 200'000.0F);  // µs: 5 Hz
-  EXPECT_TRUE(h.logged("asking for AHRS2 at 5 Hz (SET_MESSAGE_INTERVAL 178, 200000 us)"));
+  EXPECT_EQ(commands[0].param2, 500'000.0F);  // µs: 2 Hz
+  EXPECT_TRUE(h.logged("asking for AHRS2 at 2 Hz (SET_MESSAGE_INTERVAL 178, 500000 us)"));
   h.receive(ack(0));
   h.receive(mavlink::Ahrs2{});
   EXPECT_EQ(h.state(VehicleStream::heading), StreamState::arriving);
@@ -496,7 +496,7 @@ TEST(VehicleStreams, Px4IsAskedForHighresImuInstead) {
   const auto commands = h.commands();
   ASSERT_EQ(commands.size(), 1U);
   EXPECT_EQ(commands[0].param1, 105.0F);
-  EXPECT_EQ(commands[0].param2, 200'000.0F);
+  EXPECT_EQ(commands[0].param2, 500'000.0F);
   EXPECT_EQ(mavlink_name(VehicleStream::heading, kMavAutopilotPx4), "HIGHRES_IMU");
   h.receive(ack(0));
   h.receive(mavlink::HighresImu{});

@@ -4,7 +4,7 @@
 // from ArduPilot, ESTIMATOR_STATUS (230) from PX4, at 1 Hz; the estimator's is never asked of
 // another autopilot. And, of a vehicle whose yaw comes from mocap but which has a compass, its
 // heading: AHRS2 (178, DCM's heading) of ArduPilot, HIGHRES_IMU (105, the magnetometer) of PX4 —
-// the one reference for the nose left (estimate_sources.hpp, issue 48), at 5 Hz, asked only
+// the one reference for the nose left (estimate_sources.hpp, issue 48), at 2 Hz, asked only
 // while the Bridge says it is wanted (StreamTarget::want_heading).
 // Pure: time is passed in; one per vehicle, owned by the Bridge.
 //
@@ -108,8 +108,13 @@ inline constexpr std::int32_t kStreamIntervalUs = 200'000;
 /// radio. ArduPilot's GCS defaults for EXTRA3 are 1-2 Hz, PX4's for ESTIMATOR_STATUS 0.5-1 Hz.
 inline constexpr double kEstimatorRateHz = 1.0;
 inline constexpr std::int32_t kEstimatorIntervalUs = 1'000'000;
-/// kStreamRateHz (AHRS2's too: a nose check at rest needs a heading as fresh as the yaw it is
-/// compared with), or kEstimatorRateHz for the estimator's.
+/// 2 Hz for the compass heading (AHRS2, HIGHRES_IMU): a nose 90° off is a constant offset, and
+/// two samples a second keep one within kHeadingFresh of every ATTITUDE with one lost; HIGHRES_IMU
+/// is 75 bytes a frame, 150 bytes/s at 2 Hz (2.6 % of a 57600-baud radio; 375 at 5 Hz pushed a
+/// px4 vehicle at 20 Hz over that radio's budget).
+inline constexpr double kHeadingRateHz = 2.0;
+inline constexpr std::int32_t kHeadingIntervalUs = 500'000;
+/// kStreamRateHz, kEstimatorRateHz for the estimator's, kHeadingRateHz for the heading's.
 [[nodiscard]] double rate_hz(VehicleStream stream);
 [[nodiscard]] std::int32_t interval_us(VehicleStream stream);
 /// After the first heartbeat of a boot: a message arriving by then is not asked for.
