@@ -1,9 +1,10 @@
 // VehicleStreams (vehicle_streams.hpp): asks for ATTITUDE, LOCAL_POSITION_NED, the estimator's
-// health and AHRS2, confirms, retries, falls back to REQUEST_DATA_STREAM on ArduPilot, asks again
-// after a reboot.
+// health and a compass heading (AHRS2, HIGHRES_IMU), confirms, retries, falls back to
+// REQUEST_DATA_STREAM on ArduPilot, asks again after a reboot.
 #include "mocaplink/core/vehicle_streams.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "mocaplink/core/message_builders.hpp"
@@ -120,16 +121,7 @@ double rate_hz(VehicleStream stream) {
 }
 
 std::int32_t interval_us(VehicleStream stream) {
-  switch (stream) {
-    case VehicleStream::estimator:
-      return kEstimatorIntervalUs;
-    case VehicleStream::heading:
-      return kHeadingIntervalUs;
-    case VehicleStream::attitude:
-    case VehicleStream::local_position_ned:
-      break;
-  }
-  return kStreamIntervalUs;
+  return static_cast<std::int32_t>(std::lround(1e6 / rate_hz(stream)));
 }
 
 std::string_view to_string(StreamState state) {

@@ -19,7 +19,7 @@
 //             autopilot component are the target). A message that arrives within kStreamGrace
 //             of the first heartbeat of this boot is never asked for: something (the vehicle's
 //             defaults, a ground station) already set its rate, and we leave it alone.
-//   asking    COMMAND_LONG MAV_CMD_SET_MESSAGE_INTERVAL(id, kStreamIntervalUs) to the autopilot,
+//   asking    COMMAND_LONG MAV_CMD_SET_MESSAGE_INTERVAL(id, interval_us) to the autopilot,
 //             every kCommandRetryPeriod until a COMMAND_ACK, at most kCommandAttempts times, with
 //             confirmation 0, 1, 2, 3 (MAVLink "Command Protocol"). One such command in flight at
 //             a time, ATTITUDE first: COMMAND_ACK does not say which message it is about.
@@ -102,20 +102,18 @@ inline constexpr std::array<VehicleStream, 2> kAgreementStreams{VehicleStream::a
 /// from the vehicle (2 × 40-byte frames), 7 % of a 57600-baud radio. ArduPilot's own GCS default
 /// for these groups (MAVProxy, Mission Planner) is 4 Hz or more.
 inline constexpr double kStreamRateHz = 5.0;
-inline constexpr std::int32_t kStreamIntervalUs = 200'000;
 /// 1 Hz for the estimator's health: its flags change on a scale of seconds, and 1 Hz costs
 /// 34 bytes/s (EKF_STATUS_REPORT) to 54 bytes/s (ESTIMATOR_STATUS), under 1 % of a 57600-baud
 /// radio. ArduPilot's GCS defaults for EXTRA3 are 1-2 Hz, PX4's for ESTIMATOR_STATUS 0.5-1 Hz.
 inline constexpr double kEstimatorRateHz = 1.0;
-inline constexpr std::int32_t kEstimatorIntervalUs = 1'000'000;
 /// 2 Hz for the compass heading (AHRS2, HIGHRES_IMU): a nose 90° off is a constant offset, and
 /// two samples a second keep one within kHeadingFresh of every ATTITUDE with one lost; HIGHRES_IMU
 /// is 75 bytes a frame, 150 bytes/s at 2 Hz (2.6 % of a 57600-baud radio; 375 at 5 Hz pushed a
 /// px4 vehicle at 20 Hz over that radio's budget).
 inline constexpr double kHeadingRateHz = 2.0;
-inline constexpr std::int32_t kHeadingIntervalUs = 500'000;
 /// kStreamRateHz, kEstimatorRateHz for the estimator's, kHeadingRateHz for the heading's.
 [[nodiscard]] double rate_hz(VehicleStream stream);
+/// SET_MESSAGE_INTERVAL's interval for rate_hz (µs, rounded): 200000, 1000000, 500000.
 [[nodiscard]] std::int32_t interval_us(VehicleStream stream);
 /// After the first heartbeat of a boot: a message arriving by then is not asked for.
 inline constexpr Duration kStreamGrace = std::chrono::seconds(3);
