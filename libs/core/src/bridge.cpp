@@ -30,7 +30,8 @@ EstimateSources sources_of(const VehicleSetup& setup, VehicleLink link) {
 /// A disagreement at rest: the axis settings that make mocap agree with the vehicle (issue 48).
 /// The raw orientation undoes the configured mapping (R_world_body = Wᵀ · R_ned_frd · Bᵀ); the
 /// vehicle's yaw is a heading only where it is its own (a compass), never mocap's fed back; where
-/// it is mocap's, AHRS2's compass heading is, when there is one (estimate_sources.hpp).
+/// it is mocap's, its compass heading (AHRS2, HIGHRES_IMU) is, when it has one
+/// (estimate_sources.hpp).
 void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
                    std::optional<SignedAxis> source_up, const BodyEstimate& mocap,
                    VehicleState& state) {
@@ -52,7 +53,7 @@ void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
   state.set_axis_fix(find_axis_fix(raw, current, vehicle, source_up));
 }
 
-/// A disagreement's fix named before the vehicle's own heading (AHRS2) arrived: named again
+/// A disagreement's fix named before the vehicle's compass heading arrived: named again
 /// with it, so the nose is checked too.
 bool fix_lacks_heading(const VehicleState& state) {
   const Agreement& a = state.agreement();

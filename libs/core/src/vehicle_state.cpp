@@ -165,10 +165,13 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
         return t && now - *t <= kHeadingFresh;
       };
       std::optional<double> heading;
-      if (heading_wanted() && fresh(ahrs2_received_)) heading = ahrs2_yaw_rad_;
-      if (heading_wanted() && !heading && fresh(mag_received_)) {
-        const double h = magnetic_heading_rad(*mag_frd_, att->roll, att->pitch);
-        if (std::isfinite(h)) heading = h;
+      if (heading_wanted()) {
+        if (fresh(ahrs2_received_)) {
+          heading = ahrs2_yaw_rad_;
+        } else if (fresh(mag_received_)) {
+          const double h = magnetic_heading_rad(*mag_frd_, att->roll, att->pitch);
+          if (std::isfinite(h)) heading = h;
+        }
       }
       if (heading) {
         vehicle_heading_offset_deg_ = offset_deg(*heading);

@@ -153,8 +153,8 @@ inline constexpr Duration kAgreementSettle = std::chrono::seconds(15);
 /// A disagreement becomes the verdict once it has lasted this long, every comparison beyond a
 /// threshold: longer than an estimator's reset transient, short enough to be told before take-off.
 inline constexpr Duration kAgreementHold = std::chrono::seconds(3);
-/// An AHRS2 heading older than this at an ATTITUDE is not compared (asked at 5 Hz: a second is
-/// four lost in a row; a vehicle turned by hand moves some 30° in it, well inside 45°).
+/// A compass heading (AHRS2, HIGHRES_IMU) older than this at an ATTITUDE is not compared (asked
+/// at 2 Hz: a second is one lost; a vehicle turned by hand moves some 30° in it, inside 45°).
 inline constexpr Duration kHeadingFresh = std::chrono::seconds(1);
 
 /// Thresholds of the agreement check (documented defaults; docs/messages.md "Agreement").
@@ -285,7 +285,8 @@ class VehicleState {
 
   /// The Bridge's axis fix for the current disagreement (ignored unless the verdict is disagree).
   void set_axis_fix(AxisFix fix);
-  /// The vehicle's yaw is mocap's and it has a heading of its own (AHRS2): asked for, compared.
+  /// The vehicle's yaw is mocap's and it has a compass heading (AHRS2, HIGHRES_IMU): asked for,
+  /// compared.
   [[nodiscard]] bool heading_wanted() const;
 
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
