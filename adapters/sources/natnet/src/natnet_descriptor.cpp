@@ -20,7 +20,8 @@ SourceDescriptor natnet_source_descriptor() {
     if (!context.up_written) {
       out.emplace_back(
           "natnet:// with [mocap] up not written: Motive streams Y-up by default, so set "
-          "up = \"+y\" (or set Motive's Up Axis to Z and up = \"+z\" explicitly)");
+          "up = \"+y\" and body_up = \"+y\" (a rigid body created level takes Motive's axes), "
+          "or set Motive's Up Axis to Z and up = \"+z\" explicitly");
     }
     return out;
   };
