@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -277,6 +278,48 @@ TEST(Tracker, LongGapInPlaceResumesWithItsVelocityUnknown) {
   EXPECT_EQ(t.estimate().counters.resumed, 2u);
   EXPECT_TRUE(t.estimate().p_ned_m.allFinite());
   EXPECT_TRUE(t.estimate().pose_covariance.allFinite());
+}
+
+TEST(Tracker, ResumedVelocitySettlesWithoutRinging) {
+  // A body cruising at 5 cm/s with uniform +-0.5 mm noise (std::mt19937: the same numbers on
+  // every platform), lost for 1.06 s (a server restart) and back where it could have got to.
+  // Over the half second after its return, the velocity error (RMS over 20 seeds, from the second
+  // sample on: the first carries the velocity unknown) against the same filter's in steady state:
+  // 4.3x when a return restarted with a multirotor's acceleration envelope (10 m/s^2), 3.1x now.
+  // A filterless difference of the same samples is 13.6x.
+  double steady = 0;
+  double resumed = 0;
+  int steady_n = 0;
+  int resumed_n = 0;
+  const double v = 0.05;
+  for (std::uint32_t seed = 1; seed <= 20; ++seed) {
+    std::mt19937 rng(seed);
+    const auto noise = [&rng] { return (static_cast<double>(rng()) / 4294967296.0 - 0.5) * 1e-3; };
+    Tracker t;
+    int k = 0;
+    for (; k < 300; ++k) {
+      t.on_pose_ned(ms(10.0 * k), {v * k * 0.01 + noise(), 0, -1}, kLevel);
+      if (k >= 250) {
+        steady += std::pow(t.estimate().v_ned_mps.x() - v, 2);
+        ++steady_n;
+      }
+    }
+    k += 106;
+    for (int j = 0; j < 50; ++j, ++k) {
+      const SampleOutcome o = t.on_pose_ned(ms(10.0 * k), {v * k * 0.01 + noise(), 0, -1}, kLevel);
+      if (j == 0) {
+        EXPECT_EQ(o, SampleOutcome::resumed);
+      }
+      if (j >= 1) {
+        resumed += std::pow(t.estimate().v_ned_mps.x() - v, 2);
+        ++resumed_n;
+      }
+    }
+    EXPECT_EQ(t.estimate().reset_counter, 0);
+  }
+  const double ratio = std::sqrt(resumed / resumed_n) / std::sqrt(steady / steady_n);
+  EXPECT_LT(ratio, 3.6);
+  EXPECT_GT(ratio, 1.0);  // a filter that had learnt nothing before the gap would not be slower
 }
 
 TEST(Tracker, ResetCounterWrapsAt256) {
