@@ -6,6 +6,7 @@
 #include <system_error>
 #include <utility>
 
+#include "mocaplink/core/bridge.hpp"
 #include "mocaplink/io/file.hpp"
 #include "mocaplink/wire/recording_csv.hpp"
 
@@ -77,7 +78,9 @@ void Recorder::write_header(std::optional<double> rate_hz) {
 void Recorder::on_frame(const core::MocapFrame& frame, core::HostTime received, FrameFate fate) {
   if (csv_ == nullptr || csv_failed_) return;
   core::SourceTime capture = frame.capture_time + capture_offset_;
-  if (last_capture_ && last_received_ && capture + restart_step_back_ < *last_capture_) {
+  if (last_capture_ && last_received_ &&
+      core::source_clock_restarted(*last_capture_, *last_received_, capture, received,
+                                   restart_step_back_)) {
     // The source's clock started again: go on from the last frame, after the outage (at least
     // the format's 1 µs, so the restart frame is a frame of its own).
     const core::Duration gap =

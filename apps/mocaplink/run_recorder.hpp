@@ -50,8 +50,9 @@ class Recorder {
     superseded,  ///< skipped: a newer frame with all its bodies was already waiting
   };
   /// One mocap frame, handed over at host time `received`. The format requires time_s never to
-  /// decrease: a frame whose capture time goes back by more than restart_step_back (the Bridge's
-  /// own rule for a restarted source: loss_timeout_ms) is a restart, and it and the frames after
+  /// decrease: a frame after which the source's clock started again (core::source_clock_restarted,
+  /// the Bridge's own rule: back by more than restart_step_back, loss_timeout_ms, or ahead of the
+  /// host's clock by more than a second) is a restart, and it and the frames after
   /// it are written on the old time line, `received` minus the last frame's `received` after the
   /// last frame — the outage as the Bridge measured it, so a replay's trackers see the gap the
   /// live ones bridged (issue 41); a smaller step back (a reordered frame, which the trackers

@@ -360,6 +360,12 @@ void Bridge::on_frame(const MocapFrame& frame, HostTime received, BridgeOutput& 
   end_frame(out);
 }
 
+bool source_clock_restarted(SourceTime last_capture, HostTime last_received, SourceTime capture,
+                            HostTime received, Duration step_back) {
+  if (capture + step_back < last_capture) return true;
+  return (capture - last_capture) - (received - last_received) > kSourceClockLeap;
+}
+
 Duration Bridge::max_capture_step_back() const {
   return std::chrono::duration_cast<Duration>(
       std::chrono::duration<double, std::milli>(config_.tracking.loss_timeout_ms));
@@ -385,7 +391,9 @@ void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutpu
   // A step back of more than loss_timeout_ms cannot be a reordered datagram (those are a few
   // frame periods late): the source's clock started again. Smaller steps are left to the
   // Trackers, which refuse non-increasing times.
-  frame_restarted_ = last_capture_ && frame.capture_time + max_capture_step_back() < *last_capture_;
+  frame_restarted_ = last_capture_ && last_received_ &&
+                     source_clock_restarted(*last_capture_, *last_received_, frame.capture_time,
+                                            received, max_capture_step_back());
   if (frame_restarted_) {
     ++source_restarts_;
     restart_gap_ = std::max(Duration::zero(), received - last_received_.value_or(received));

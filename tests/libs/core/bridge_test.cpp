@@ -249,6 +249,61 @@ TEST(BridgeFrames, SourceRestartKeepsPosesFlowingAndResetsOnlyMovedBodies) {
   EXPECT_EQ(s.bodies[1].estimate.reset_counter, 1);
 }
 
+TEST(BridgeFrames, SourceRestartOnAClockAheadIsNoJump) {
+  // Issue 49's harness: a Vicon server restarted with its frame numbers from a new base, its
+  // clock 1600 s ahead, after 1.05 s away. The quad drifts at 1 cm/s: a gap of 1600 s would put
+  // the body 16 m from where it could have got to (a jump); the host's 1.05 s does not.
+  Bridge bridge = make_bridge(two_vehicles());
+  const auto drifting = [](std::uint64_t n, double t_s) {
+    MocapFrame f = frame_at(n, true, true);
+    f.bodies[0].p_world_m.x() += 0.01 * t_s;
+    return f;
+  };
+  for (std::uint64_t n = 1; n <= 100; ++n) {
+    bridge.on_frame(drifting(n, 0.01 * static_cast<double>(n)), received_at(n));
+  }
+  std::size_t odometry = 0;
+  std::size_t resets = 0;
+  for (std::uint64_t k = 1; k <= 50; ++k) {
+    const double t_s = 1.0 + 1.05 + 0.01 * static_cast<double>(k);
+    const BridgeOutput out = bridge.on_frame(drifting(160000 + k, t_s), received_at(100 + 105 + k));
+    odometry += of_type<mavlink::Odometry>(out).size();
+    for (const auto& e : out.events) resets += e.kind == BridgeEventKind::body_reset ? 1 : 0;
+  }
+  auto s = bridge.snapshot(received_at(155 + 100));
+  EXPECT_EQ(s.source_restarts, 1U);
+  EXPECT_EQ(resets, 0U);
+  EXPECT_EQ(s.bodies[0].estimate.reset_counter, 0);
+  EXPECT_EQ(s.bodies[0].estimate.counters.resumed, 1U);
+  EXPECT_GE(odometry, 20U);
+  // A clock that kept running through a 3 s outage (capture and host 3 s on) is no restart: the
+  // gap is real, and the quad, 3 cm on, is back where it could have got to.
+  for (std::uint64_t k = 1; k <= 50; ++k) {
+    const double t_s = 2.55 + 3.0 + 0.01 * static_cast<double>(k);
+    bridge.on_frame(drifting(160350 + k, t_s), received_at(455 + k));
+  }
+  s = bridge.snapshot(received_at(505));
+  EXPECT_EQ(s.source_restarts, 1U);
+  EXPECT_EQ(s.bodies[0].estimate.reset_counter, 0);
+  EXPECT_EQ(s.bodies[0].estimate.counters.resumed, 2U);
+}
+
+TEST(SourceClock, ARestartIsAStepBackOrALeapAheadOfTheHost) {
+  const SourceTime c{seconds(10)};
+  const HostTime r{seconds(100)};
+  const Duration back = milliseconds(250);
+  EXPECT_FALSE(source_clock_restarted(c, r, c + milliseconds(10), r + milliseconds(10), back));
+  EXPECT_FALSE(source_clock_restarted(c, r, c - milliseconds(20), r, back));  // reordered
+  EXPECT_TRUE(source_clock_restarted(c, r, c - milliseconds(251), r, back));
+  // An outage the clock ran through: 3 s on both clocks, or a burst after a stall.
+  EXPECT_FALSE(source_clock_restarted(c, r, c + seconds(3), r + seconds(3), back));
+  EXPECT_FALSE(source_clock_restarted(c, r, c + milliseconds(10), r + seconds(3), back));
+  // Ahead of the host by more than kSourceClockLeap: a new clock.
+  EXPECT_FALSE(source_clock_restarted(c, r, c + seconds(2), r + milliseconds(1001), back));
+  EXPECT_TRUE(source_clock_restarted(c, r, c + seconds(2), r + milliseconds(999), back));
+  EXPECT_TRUE(source_clock_restarted(c, r, c + seconds(1600), r + milliseconds(1050), back));
+}
+
 // Issue 27: a frame's age is judged from its capture, so a frame that continues the stream but
 // arrives late (a TCP backlog after a stall, a VRPN round held back, a replay behind schedule) is
 // as old as its capture however recently it arrived; a source restart is judged by arrival.

@@ -69,6 +69,22 @@ namespace mocaplink::core {
 [[nodiscard]] WorldAxisMapping default_world_axes();
 [[nodiscard]] BodyAxisMapping default_body_axes();
 
+/// How far a source's capture time may run ahead of the host's clock between two frames before
+/// it counts as a clock that started again (source_clock_restarted): the CaptureTimeMapper's
+/// max_step, so the two re-seed on the same frames.
+inline constexpr Duration kSourceClockLeap = std::chrono::seconds(1);
+
+/// Whether the source's clock started again between a frame (`last_capture`, handed over at
+/// `last_received`) and the next: its capture time went back by more than `step_back`
+/// (loss_timeout_ms: a reordered datagram is a few frame periods late), or ran ahead of the host's
+/// clock by more than kSourceClockLeap — a server restarted on a clock ahead of its old one (frame
+/// numbers from a new base), a time stamp taken from a wall clock that NTP stepped. A clock that
+/// kept running through an outage advances with the host's: that gap is real, no restart. The
+/// Bridge and the recorder (--record) apply the same rule.
+[[nodiscard]] bool source_clock_restarted(SourceTime last_capture, HostTime last_received,
+                                          SourceTime capture, HostTime received,
+                                          Duration step_back);
+
 /// Longest vehicle name (1..64 of [A-Za-z0-9_.-]) and rigid-body name (1..256 bytes), in bytes:
 /// the config file and the dashboard API check these.
 inline constexpr std::size_t kMaxVehicleNameLength = 64;
@@ -360,7 +376,7 @@ class Bridge {
   void body_events(BridgeOutput& out);
   [[nodiscard]] std::optional<GpsTime> gps_time(HostTime t) const;
   /// A capture-time step back larger than this is a restart of the source's clock, not a
-  /// reordered datagram (loss_timeout_ms).
+  /// reordered datagram (loss_timeout_ms; source_clock_restarted).
   [[nodiscard]] Duration max_capture_step_back() const;
   [[nodiscard]] std::uint64_t signing_now_10us(HostTime t) const;
   void vehicle_events(std::size_t index, const VehicleReaction& reaction, HostTime now,
