@@ -121,14 +121,18 @@ void print_text(const nlohmann::json& v) {
                 fixed("tilt_offset_deg", 1).c_str(), fixed("yaw_offset_deg", 1).c_str(),
                 fixed("position_offset_m", 3).c_str(),
                 compass == "-" ? "" : (", compass " + compass + " deg").c_str());
+    // The fix in its own words (the lines, the residuals, an equally good alternative, or why
+    // none fits), then what the check could not measure: the reason without the fix it starts
+    // with, so the fix is printed once.
     const nlohmann::json& fix = agreement.at("fix");
+    std::string reason = text(agreement, "reason");
     if (fix.is_object()) {
-      for (const auto& line : fix.at("lines"))
-        std::printf("    fix: %s\n", line.get<std::string>().c_str());
+      const std::string fix_text = text(fix, "text");
+      std::printf("    %s\n", fix_text.c_str());
+      if (reason.starts_with(fix_text)) reason = reason.substr(fix_text.size());
+      if (reason.starts_with("; ")) reason = reason.substr(2);
     }
-    if (!text(agreement, "reason").empty()) {
-      std::printf("            %s\n", text(agreement, "reason").c_str());
-    }
+    if (!reason.empty()) std::printf("            %s\n", reason.c_str());
   }
   const nlohmann::json& estimator = v.at("estimator");
   if (estimator.is_object() && !estimator.at("problems").empty()) {

@@ -105,8 +105,10 @@ async function main() {
     // `vehicle setup` names the same fix, through the running daemon.
     const setup = h.mocaplink(['vehicle', 'setup', '--config', mistake.config, 'quad', '--timeout', '20']);
     await setup.exited;
-    assert.match(setup.stdout, /^ {2}agreement: disagree \(tilt [0-9.]+ deg, yaw -?[0-9.e-]+ deg, position [0-9.e-]+ m, compass -?[0-9.]+ deg\)\n {4}fix: \[mocap\] up = "\+z"\n/m,
+    assert.match(setup.stdout, /^ {2}agreement: disagree \(tilt [0-9.]+ deg, yaw -?[0-9.e-]+ deg, position [0-9.e-]+ m, compass -?[0-9.]+ deg\)\n {4}fix: \[mocap\] up = "\+z" \(then tilt [0-9.]+°, heading [0-9.]+°\)\n {12}yaw compared with its compass only /m,
       `${setup.stdout}\n${setup.stderr}`);
+    // The fix once, not again in the reason below it.
+    assert.equal(setup.stdout.split('up = "+z"').length - 1, 1, setup.stdout);
     console.log(setup.stdout.split('\n').filter((l) => /agreement:|fix:/.test(l)).join('\n'));
     // It refuses nothing new: poses keep flowing.
     const sent = bad.sent.ODOMETRY;
