@@ -134,7 +134,10 @@ EstimateSources estimate_sources(AutopilotFamily autopilot,
       return ardupilot(input, parameter);
     case AutopilotFamily::px4:
       return px4(version, input, parameter);
-    case AutopilotFamily::unknown:
+    case AutopilotFamily::unknown: {
+      const QuantitySource waiting{EstimateSource::unknown, std::string(kHeartbeatBasis)};
+      return {waiting, waiting, waiting};
+    }
     case AutopilotFamily::other:
       break;
   }
@@ -163,6 +166,10 @@ std::optional<std::string> describe_unchecked(std::string_view what, const Quant
         return name + " not checkable: unknown whether the vehicle's " + name +
                " comes from mocap (no set-up rules for its autopilot)";
       }
+      if (source.basis == kHeartbeatBasis) {
+        return name + " not checkable yet: no HEARTBEAT from the vehicle yet (which autopilot " +
+               "says where its " + name + " comes from)";
+      }
       return name + " not checkable yet: " + source.basis +
              " not read from the vehicle (does its " + name + " come from mocap?)";
   }
@@ -171,6 +178,13 @@ std::optional<std::string> describe_unchecked(std::string_view what, const Quant
 
 std::optional<std::string> describe_unchecked(const EstimateSources& sources,
                                               bool heading_compared) {
+  const auto unheard = [](const QuantitySource& q) {
+    return q.source == EstimateSource::unknown && q.basis == kHeartbeatBasis;
+  };
+  if (unheard(sources.yaw) && unheard(sources.position)) {
+    return "yaw and position not checkable yet: no HEARTBEAT from the vehicle yet (which "
+           "autopilot says where they come from)";
+  }
   std::optional<std::string> yaw = describe_unchecked("yaw", sources.yaw);
   if (sources.yaw.source == EstimateSource::mocap) {
     const QuantitySource& h = sources.heading;

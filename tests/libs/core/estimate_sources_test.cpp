@@ -61,6 +61,16 @@ TEST(EstimateSources, UnreadParametersAreUnknownAndSaySo) {
   EXPECT_EQ(describe_unchecked("position", other.position),
             "position not checkable: unknown whether the vehicle's position comes from mocap (no "
             "set-up rules for its autopilot)");
+  // Before the first HEARTBEAT the autopilot is not known: "not yet", not "no rules".
+  const auto unheard =
+      estimate_sources(AutopilotFamily::unknown, std::nullopt, SetupInput::vision, params({}));
+  EXPECT_EQ(unheard.heading.source, EstimateSource::unknown);
+  EXPECT_EQ(describe_unchecked("yaw", unheard.yaw),
+            "yaw not checkable yet: no HEARTBEAT from the vehicle yet (which autopilot says where "
+            "its yaw comes from)");
+  EXPECT_EQ(describe_unchecked(unheard, false),
+            "yaw and position not checkable yet: no HEARTBEAT from the vehicle yet (which "
+            "autopilot says where they come from)");
 }
 
 TEST(EstimateSources, ArduPilotAhrs2IsAHeadingOfItsOwnOnlyWithTheCompassInUse) {
