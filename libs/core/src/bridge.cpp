@@ -396,7 +396,7 @@ void Bridge::begin_frame(const MocapFrame& frame, HostTime received, BridgeOutpu
                                             received, max_capture_step_back());
   if (frame_restarted_) {
     ++source_restarts_;
-    restart_gap_ = std::max(Duration::zero(), received - last_received_.value_or(received));
+    restart_gap_ = std::max(Duration::zero(), received - *last_received_);
   }
   last_received_ = received;
   if (!last_capture_ || frame_restarted_ || frame.capture_time > *last_capture_) {

@@ -69,11 +69,6 @@ namespace mocaplink::core {
 [[nodiscard]] WorldAxisMapping default_world_axes();
 [[nodiscard]] BodyAxisMapping default_body_axes();
 
-/// How far a source's capture time may run ahead of the host's clock between two frames before
-/// it counts as a clock that started again (source_clock_restarted): the CaptureTimeMapper's
-/// max_step, so the two re-seed on the same frames.
-inline constexpr Duration kSourceClockLeap = std::chrono::seconds(1);
-
 /// Whether the source's clock started again between a frame (`last_capture`, handed over at
 /// `last_received`) and the next: its capture time went back by more than `step_back`
 /// (loss_timeout_ms: a reordered datagram is a few frame periods late), or ran ahead of the host's

@@ -50,12 +50,12 @@ enum class EstimateSource : std::uint8_t {
 /// "unknown", "independent", "mocap", "none" (the API's spellings).
 [[nodiscard]] std::string_view to_string(EstimateSource source);
 
-/// Where one compared quantity comes from, and the parameter that says so ("EK3_SRC1_YAW = 6";
-/// when unknown, the parameter waited for: "EK3_SRC1_YAW").
 /// The basis of every quantity before the vehicle's first HEARTBEAT: which autopilot it runs, so
 /// which parameter says where the quantity comes from, is not known yet.
 inline constexpr std::string_view kHeartbeatBasis = "HEARTBEAT";
 
+/// Where one compared quantity comes from, and the parameter that says so ("EK3_SRC1_YAW = 6";
+/// when unknown, the parameter waited for: "EK3_SRC1_YAW", or kHeartbeatBasis).
 struct QuantitySource {
   EstimateSource source = EstimateSource::unknown;
   std::string basis;

@@ -39,12 +39,17 @@ namespace mocaplink::core {
 /// rate 1 % off its nominal). A larger slope is measurement noise or a restart in the making.
 inline constexpr double kMaxSourceDrift = 0.01;
 
+/// How far a source's clock may jump against the host's between two frames before it counts as a
+/// clock that started again: the mapper re-seeds there, and core::source_clock_restarted (the
+/// Bridge's and the recorder's rule) takes a leap ahead that large for a restart.
+inline constexpr Duration kSourceClockLeap = std::chrono::seconds(1);
+
 /// Maps source capture times to host capture times (see the file comment).
 class CaptureTimeMapper {
  public:
   struct Config {
-    Duration window = std::chrono::seconds(2);    ///< rotation period of the minimum; > 0
-    Duration max_step = std::chrono::seconds(1);  ///< candidate jump that re-seeds; > 0
+    Duration window = std::chrono::seconds(2);  ///< rotation period of the minimum; > 0
+    Duration max_step = kSourceClockLeap;       ///< candidate jump that re-seeds; > 0
   };
   CaptureTimeMapper() = default;
   explicit CaptureTimeMapper(Config config) : config_(config) {}
