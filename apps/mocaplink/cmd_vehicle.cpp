@@ -100,7 +100,7 @@ void print_text(const nlohmann::json& v) {
       std::snprintf(buffer, sizeof buffer, "%.*f", digits, agreement.at(key).get<double>());
       return std::string(buffer);
     };
-    // The compass (AHRS2) where the vehicle's yaw is mocap's and it has one.
+    // The compass (RAW_IMU, HIGHRES_IMU) where the vehicle's yaw is mocap's and it has one.
     const std::string compass = fixed("heading_offset_deg", 1);
     // An agreement names what it rests on: "agree on tilt only" when yaw and position are
     // mocap's own (the reason below says so), so it never reads as a nose check it was not.

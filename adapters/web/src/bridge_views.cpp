@@ -378,7 +378,7 @@ StatusView BridgeStatusBuilder::build(const core::BridgeSnapshot& snapshot,
     const std::uint8_t autopilot = state.heartbeat ? state.heartbeat->autopilot : 0;
     for (const core::VehicleStream stream : core::kVehicleStreams) {
       // The estimator's only once the autopilot says which message it is; the compass heading
-      // (AHRS2, HIGHRES_IMU) only where it is asked for or arrives.
+      // (RAW_IMU, HIGHRES_IMU) only where it is asked for or arrives.
       if (stream == core::VehicleStream::estimator && !core::asked_of(stream, autopilot)) continue;
       if (stream == core::VehicleStream::heading &&
           !core::checks_second_heading(state.agreement.sources) &&

@@ -30,7 +30,7 @@ EstimateSources sources_of(const VehicleSetup& setup, VehicleLink link) {
 /// A disagreement at rest: the axis settings that make mocap agree with the vehicle (issue 48).
 /// The raw orientation undoes the configured mapping (R_world_body = Wᵀ · R_ned_frd · Bᵀ); the
 /// vehicle's yaw is a heading only where it is its own (a compass), never mocap's fed back; where
-/// it is mocap's, its compass heading (AHRS2, HIGHRES_IMU) is, when it has one
+/// it is mocap's, its compass's heading (RAW_IMU, HIGHRES_IMU) is, when it has one
 /// (estimate_sources.hpp).
 void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
                    std::optional<SignedAxis> source_up, const BodyEstimate& mocap,

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
+#include <span>
 
 #include "mocaplink/core/axis_fix.hpp"
 
@@ -27,20 +29,29 @@ QuantitySource unknown(std::string_view parameter) {
   return {EstimateSource::unknown, std::string(parameter)};
 }
 
-constexpr std::array<std::string_view, 2> kArduCompass{"COMPASS_ENABLE", "COMPASS_USE"};
-constexpr std::array<std::string_view, 1> kPx4Compass{"SYS_HAS_MAG"};
+constexpr std::array<std::string_view, 5> kArduCompass{
+    "COMPASS_ENABLE", "COMPASS_OFS_X", "COMPASS_OFS_Y", "COMPASS_OFS_Z", "COMPASS_DEC"};
+constexpr std::array<std::string_view, 2> kPx4Compass{"SYS_HAS_MAG", "EKF2_MAG_DECL"};
 
-/// AHRS2's yaw as a heading (estimate_sources.hpp): DCM's, corrected by the compass when it is
-/// enabled and used for yaw.
+/// ArduPilot's compass as a heading (estimate_sources.hpp): the field in RAW_IMU, whether or not
+/// its EKF or DCM uses it for yaw, once it is enabled and calibrated.
 QuantitySource ardupilot_heading(const ParameterLookup& parameter) {
-  for (const std::string_view name : kArduCompass) {
-    const auto value = parameter(name);
-    if (!value) return unknown(name);
-    if (*value == 0) {
-      return {EstimateSource::none, std::string(name) + " = 0: AHRS2's yaw is the gyros' alone"};
-    }
+  const auto enabled = parameter("COMPASS_ENABLE");
+  if (!enabled) return unknown("COMPASS_ENABLE");
+  if (*enabled == 0) return {EstimateSource::none, "COMPASS_ENABLE = 0: no compass"};
+  // ArduPilot's own test of a calibrated compass (Compass::configured): offsets not all zero.
+  bool calibrated = false;
+  for (const std::string_view name : std::span(kArduCompass).subspan(1, 3)) {
+    const auto offset = parameter(name);
+    if (!offset) return unknown(name);
+    calibrated = calibrated || *offset != 0;
   }
-  return {EstimateSource::independent, "AHRS2, DCM with the compass: COMPASS_USE = 1"};
+  if (!calibrated) {
+    return {EstimateSource::none,
+            "COMPASS_OFS_X, _Y and _Z = 0: its compass is not calibrated, so its field is no "
+            "heading"};
+  }
+  return {EstimateSource::independent, "its compass in RAW_IMU: COMPASS_ENABLE = 1, calibrated"};
 }
 
 bool has_bit(double value, unsigned bit) {
@@ -63,7 +74,10 @@ EstimateSources ardupilot(SetupInput input, const ParameterLookup& parameter) {
   } else {
     s.position = unknown("EK3_SRC1_POSXY");
   }
-  if (s.yaw.source == EstimateSource::mocap) s.heading = ardupilot_heading(parameter);
+  if (s.yaw.source == EstimateSource::mocap) {
+    s.heading = ardupilot_heading(parameter);
+    s.declination_rad = parameter("COMPASS_DEC").value_or(0.0);  // radians
+  }
   if (s.yaw.source == EstimateSource::unknown) s.heading = unknown("EK3_SRC1_YAW");
   return s;
 }
@@ -95,7 +109,10 @@ EstimateSources px4(const std::optional<FirmwareVersion>& version, SetupInput in
   if (!value) return {unknown(name), unknown(name), unknown(name)};
   s.yaw = has_bit(*value, yaw_bit) ? from_mocap(name, *value) : independent(name, *value);
   s.position = has_bit(*value, pos_bit) ? from_mocap(name, *value) : independent(name, *value);
-  if (s.yaw.source == EstimateSource::mocap) s.heading = px4_heading(parameter);
+  if (s.yaw.source == EstimateSource::mocap) {
+    s.heading = px4_heading(parameter);
+    s.declination_rad = parameter("EKF2_MAG_DECL").value_or(0.0) * std::numbers::pi / 180.0;
+  }
   return s;
 }
 

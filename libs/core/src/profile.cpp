@@ -188,7 +188,7 @@ std::size_t max_frame_bytes(MessageKind kind, bool signed_frames) {
 namespace {
 
 /// The heading the agreement check may ask a vehicle of this profile for (vehicle_streams.hpp):
-/// ArduPilot's AHRS2, PX4's HIGHRES_IMU, either where the profile does not say which autopilot;
+/// ArduPilot's RAW_IMU, PX4's HIGHRES_IMU, either where the profile does not say which autopilot;
 /// none for px4-gps (HIL_GPS has no yaw: PX4's is its own, no second heading is asked).
 struct HeadingStream {
   std::size_t payload_bytes;
@@ -199,7 +199,7 @@ HeadingStream heading_stream(Profile profile) {
   switch (profile) {
     case Profile::ardupilot:
     case Profile::ardupilot_gps:
-      return {mavlink::Ahrs2::kMaxLength, mavlink::Ahrs2::kName};
+      return {mavlink::RawImu::kMaxLength, mavlink::RawImu::kName};
     case Profile::px4:
       return {mavlink::HighresImu::kMaxLength, mavlink::HighresImu::kName};
     case Profile::px4_gps:
@@ -209,8 +209,8 @@ HeadingStream heading_stream(Profile profile) {
     case Profile::automatic:
       break;
   }
-  return {std::max(mavlink::Ahrs2::kMaxLength, mavlink::HighresImu::kMaxLength),
-          "AHRS2 or HIGHRES_IMU"};
+  return {std::max(mavlink::RawImu::kMaxLength, mavlink::HighresImu::kMaxLength),
+          "RAW_IMU or HIGHRES_IMU"};
 }
 
 }  // namespace
@@ -234,7 +234,7 @@ double link_bytes_per_second(Profile profile, const MessageSet& messages, double
   // From the vehicle: ATTITUDE and LOCAL_POSITION_NED at the rate the agreement check asks for
   // (vehicle_streams.hpp). A UART carries each direction on its own wire, but a telemetry radio
   // shares one air channel between both, so the bound counts them (signed like ours).
-  // The heading's at kHeadingRateHz (ArduPilot's AHRS2, PX4's HIGHRES_IMU, the larger where the
+  // The heading's at kHeadingRateHz (ArduPilot's RAW_IMU, PX4's HIGHRES_IMU, the larger where the
   // profile does not say), asked only of a vehicle whose yaw is mocap's (an upper bound counts
   // it). And the estimator's health the set-up list asks for at 1 Hz (the larger of
   // ArduPilot's and PX4's message).

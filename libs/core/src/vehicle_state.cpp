@@ -136,10 +136,13 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
     on_heartbeat(message, now, reaction);
   } else if (const auto* origin = std::get_if<mavlink::GpsGlobalOrigin>(&message.message)) {
     on_origin(*origin, reaction);
-  } else if (const auto* ahrs2 = std::get_if<mavlink::Ahrs2>(&message.message)) {
-    if (std::isfinite(ahrs2->yaw)) {
-      ahrs2_yaw_rad_ = ahrs2->yaw;
-      ahrs2_received_ = now;
+  } else if (const auto* raw = std::get_if<mavlink::RawImu>(&message.message)) {
+    // ArduPilot's compass field (milligauss, body frame; estimate_sources.hpp). All zero: it has
+    // no compass there.
+    const Eigen::Vector3d field(raw->xmag, raw->ymag, raw->zmag);
+    if (!field.isZero()) {
+      mag_frd_ = field;
+      mag_received_ = now;
     }
   } else if (const auto* imu = std::get_if<mavlink::HighresImu>(&message.message)) {
     // Bits 6-8 of fields_updated: the magnetometer's x, y, z are this sample's.
@@ -165,13 +168,9 @@ VehicleReaction VehicleState::on_message(const ReceivedMessage& message, HostTim
         return t && now - *t <= kHeadingFresh;
       };
       std::optional<double> heading;
-      if (heading_wanted()) {
-        if (fresh(ahrs2_received_)) {
-          heading = ahrs2_yaw_rad_;
-        } else if (fresh(mag_received_)) {
-          const double h = magnetic_heading_rad(*mag_frd_, att->roll, att->pitch);
-          if (std::isfinite(h)) heading = h;
-        }
+      if (heading_wanted() && fresh(mag_received_)) {
+        const double h = magnetic_heading_rad(*mag_frd_, att->roll, att->pitch);
+        if (std::isfinite(h)) heading = h + agreement_.sources.declination_rad;
       }
       if (heading) {
         vehicle_heading_offset_deg_ = offset_deg(*heading);

@@ -1,5 +1,5 @@
 // VehicleStreams (vehicle_streams.hpp): asks for ATTITUDE, LOCAL_POSITION_NED, the estimator's
-// health and a compass heading (AHRS2, HIGHRES_IMU), confirms, retries, falls back to
+// health and a compass field (RAW_IMU, HIGHRES_IMU), confirms, retries, falls back to
 // REQUEST_DATA_STREAM on ArduPilot, asks again after a reboot.
 #include "mocaplink/core/vehicle_streams.hpp"
 
@@ -61,10 +61,12 @@ StreamFacts facts(VehicleStream stream, std::uint8_t autopilot) {
     case VehicleStream::local_position_ned:
       return {mavlink::LocalPositionNed::kName, mavlink::LocalPositionNed::kId, 6, "POSITION"};
     case VehicleStream::heading:
-      // PX4's magnetometer (HIGHRES_IMU; PX4 has no groups, never a fallback), ArduPilot's DCM.
+      // The magnetometer: PX4's in HIGHRES_IMU (PX4 has no groups, never a fallback),
+      // ArduPilot's in RAW_IMU, whose group is RAW_SENSORS.
       return autopilot == kMavAutopilotPx4
-                 ? StreamFacts{mavlink::HighresImu::kName, mavlink::HighresImu::kId, 12, "EXTRA3"}
-                 : StreamFacts{mavlink::Ahrs2::kName, mavlink::Ahrs2::kId, 12, "EXTRA3"};
+                 ? StreamFacts{mavlink::HighresImu::kName, mavlink::HighresImu::kId, 1,
+                               "RAW_SENSORS"}
+                 : StreamFacts{mavlink::RawImu::kName, mavlink::RawImu::kId, 1, "RAW_SENSORS"};
     case VehicleStream::estimator:
       break;
   }
@@ -207,7 +209,7 @@ void VehicleStreams::on_message(const ReceivedMessage& message, HostTime now,
              std::holds_alternative<mavlink::EstimatorStatus>(message.message)) {
     // Either autopilot's: arriving is arriving, whichever was asked for.
     arrived(VehicleStream::estimator, now, notes);
-  } else if (std::holds_alternative<mavlink::Ahrs2>(message.message) ||
+  } else if (std::holds_alternative<mavlink::RawImu>(message.message) ||
              std::holds_alternative<mavlink::HighresImu>(message.message)) {
     arrived(VehicleStream::heading, now, notes);
   } else if (const auto* ack = std::get_if<mavlink::CommandAck>(&message.message)) {
@@ -327,7 +329,7 @@ void VehicleStreams::tick_stream(VehicleStream s, HostTime now, std::vector<mavl
       break;
     case StreamState::arriving:
       // Counted from the heartbeat's return too: a link that was silent gets its chance first.
-      // AHRS2 no longer wanted is not asked for again.
+      // A compass no longer wanted is not asked for again.
       if (s == VehicleStream::heading && !target_.want_heading) break;
       if (st.last_seen && now - std::max(*st.last_seen, *alive_since_) >= kStreamStaleAfter) {
         notes.push_back(std::string(mavlink_name(s, target_.autopilot)) +

@@ -21,6 +21,7 @@ constexpr std::array<MessageInfo, kMessageCount> kInfos{{
     info_of<ParamValue>(),
     info_of<ParamSet>(),
     info_of<GpsRawInt>(),
+    info_of<RawImu>(),
     info_of<Attitude>(),
     info_of<AttitudeQuaternion>(),
     info_of<LocalPositionNed>(),
@@ -38,7 +39,6 @@ constexpr std::array<MessageInfo, kMessageCount> kInfos{{
     info_of<HilGps>(),
     info_of<AttPosMocap>(),
     info_of<AutopilotVersion>(),
-    info_of<Ahrs2>(),
     info_of<EkfStatusReport>(),
     info_of<EstimatorStatus>(),
     info_of<GpsInput>(),
@@ -105,41 +105,41 @@ const MessageInfo* find_message_info(std::uint32_t msgid) noexcept {
       return &kInfos[6];
     case 24:
       return &kInfos[7];
-    case 30:
+    case 27:
       return &kInfos[8];
-    case 31:
+    case 30:
       return &kInfos[9];
-    case 32:
+    case 31:
       return &kInfos[10];
-    case 33:
+    case 32:
       return &kInfos[11];
-    case 48:
+    case 33:
       return &kInfos[12];
-    case 49:
+    case 48:
       return &kInfos[13];
-    case 66:
+    case 49:
       return &kInfos[14];
-    case 76:
+    case 66:
       return &kInfos[15];
-    case 77:
+    case 76:
       return &kInfos[16];
-    case 101:
+    case 77:
       return &kInfos[17];
-    case 102:
+    case 101:
       return &kInfos[18];
-    case 103:
+    case 102:
       return &kInfos[19];
-    case 105:
+    case 103:
       return &kInfos[20];
-    case 111:
+    case 105:
       return &kInfos[21];
-    case 113:
+    case 111:
       return &kInfos[22];
-    case 138:
+    case 113:
       return &kInfos[23];
-    case 148:
+    case 138:
       return &kInfos[24];
-    case 178:
+    case 148:
       return &kInfos[25];
     case 193:
       return &kInfos[26];
@@ -179,6 +179,7 @@ std::optional<Message> make_message(std::string_view name) noexcept {
   if (name == ParamValue::kName) return ParamValue{};
   if (name == ParamSet::kName) return ParamSet{};
   if (name == GpsRawInt::kName) return GpsRawInt{};
+  if (name == RawImu::kName) return RawImu{};
   if (name == Attitude::kName) return Attitude{};
   if (name == AttitudeQuaternion::kName) return AttitudeQuaternion{};
   if (name == LocalPositionNed::kName) return LocalPositionNed{};
@@ -196,7 +197,6 @@ std::optional<Message> make_message(std::string_view name) noexcept {
   if (name == HilGps::kName) return HilGps{};
   if (name == AttPosMocap::kName) return AttPosMocap{};
   if (name == AutopilotVersion::kName) return AutopilotVersion{};
-  if (name == Ahrs2::kName) return Ahrs2{};
   if (name == EkfStatusReport::kName) return EkfStatusReport{};
   if (name == EstimatorStatus::kName) return EstimatorStatus{};
   if (name == GpsInput::kName) return GpsInput{};
@@ -226,6 +226,8 @@ std::optional<Message> make_message(std::uint32_t msgid) noexcept {
       return ParamSet{};
     case GpsRawInt::kId:
       return GpsRawInt{};
+    case RawImu::kId:
+      return RawImu{};
     case Attitude::kId:
       return Attitude{};
     case AttitudeQuaternion::kId:
@@ -260,8 +262,6 @@ std::optional<Message> make_message(std::uint32_t msgid) noexcept {
       return AttPosMocap{};
     case AutopilotVersion::kId:
       return AutopilotVersion{};
-    case Ahrs2::kId:
-      return Ahrs2{};
     case EkfStatusReport::kId:
       return EkfStatusReport{};
     case EstimatorStatus::kId:
@@ -302,6 +302,8 @@ std::optional<Message> unpack_message(std::uint32_t msgid,
       return unpack_as<ParamSet>(payload);
     case GpsRawInt::kId:
       return unpack_as<GpsRawInt>(payload);
+    case RawImu::kId:
+      return unpack_as<RawImu>(payload);
     case Attitude::kId:
       return unpack_as<Attitude>(payload);
     case AttitudeQuaternion::kId:
@@ -336,8 +338,6 @@ std::optional<Message> unpack_message(std::uint32_t msgid,
       return unpack_as<AttPosMocap>(payload);
     case AutopilotVersion::kId:
       return unpack_as<AutopilotVersion>(payload);
-    case Ahrs2::kId:
-      return unpack_as<Ahrs2>(payload);
     case EkfStatusReport::kId:
       return unpack_as<EkfStatusReport>(payload);
     case EstimatorStatus::kId:

@@ -9,9 +9,9 @@
 //           agreement_failing alert, and the fix `[mocap] up = "+z"` in agreement.fix, the reason
 //           and the log line; poses keep flowing.
 //   nose    `body_forward = "+y"` (a body created nose-left): tilt and the fed-back yaw agree,
-//           the compass does not: the vehicle has one (COMPASS_ENABLE = COMPASS_USE = 1), so
-//           mocaplink asks for AHRS2 with SET_MESSAGE_INTERVAL, which this vehicle then sends
-//           with the body's true heading (DCM's compass heading on ArduPilot): heading offset
+//           the compass does not: the vehicle has a calibrated one (COMPASS_ENABLE = 1, offsets
+//           not 0), so mocaplink asks for RAW_IMU with SET_MESSAGE_INTERVAL, which this vehicle
+//           then sends with Earth's field turned into the body by its true attitude: heading offset
 //           near 90°, `disagree`, and the fix `[[vehicle]] body_forward = "+x"`.
 // The heading, like the tilt, is the raw quaternion turned into NED here by hand.
 'use strict';
@@ -57,8 +57,8 @@ async function session(dir, name, up, vehicleKeys = {}, { px4 = false, visionYaw
   return { run, api, verdict, done, config, quad };
 }
 
-const NOT_CHECKABLE = 'yaw compared with its compass only (AHRS2, DCM with the compass: '
-  + "COMPASS_USE = 1), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position "
+const NOT_CHECKABLE = 'yaw compared with its compass only (its compass in RAW_IMU: '
+  + "COMPASS_ENABLE = 1, calibrated), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position "
   + "not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
 
 async function main() {
@@ -76,8 +76,8 @@ async function main() {
     assert.ok(Math.abs(ok.agreement.heading_offset_deg) < 10, JSON.stringify(ok.agreement));
     assert.equal(ok.agreement.reason, NOT_CHECKABLE);
     assert.equal(ok.agreement.fix, null);
-    assert.equal(ok.streams.AHRS2, 'arriving', JSON.stringify(ok.streams));
-    assert.ok(right.quad.ahrs2Asked >= 1);
+    assert.equal(ok.streams.RAW_IMU, 'arriving', JSON.stringify(ok.streams));
+    assert.ok(right.quad.rawImuAsked >= 1);
     assert.deepEqual(ok.agreement.checked, ['tilt', 'compass'], JSON.stringify(ok.agreement));
     const rightSetup = h.mocaplink(['vehicle', 'setup', '--config', right.config, 'quad', '--timeout', '20']);
     await rightSetup.exited;
@@ -92,7 +92,7 @@ async function main() {
     assert.equal(a.fix.kind, 'fix', JSON.stringify(a.fix));
     assert.deepEqual(a.fix.lines, ['[mocap] up = "+z"'], JSON.stringify(a.fix));
     assert.ok(a.fix.tilt_residual_deg < 5, JSON.stringify(a.fix));
-    // Named again once AHRS2 arrived: the nose is checked too (a wrong `up` leaves it right).
+    // Named again once RAW_IMU arrived: the nose is checked too (a wrong `up` leaves it right).
     await mistake.verdict('disagree', 5000, (ag) => ag.fix && ag.fix.heading_residual_deg !== null);
     const withHeading = (await mistake.api('GET', '/api/status')).json.vehicles[0].agreement.fix;
     assert.deepEqual(withHeading.lines, ['[mocap] up = "+z"'], JSON.stringify(withHeading));
@@ -138,7 +138,7 @@ async function main() {
     assert.deepEqual(px4Turned.fix.lines, ['[[vehicle]] body_forward = "+x"'], JSON.stringify(px4Turned.fix));
     assert.ok(px4Turned.reason.endsWith('position not checkable: the vehicle\'s position comes from '
       + 'mocap (EKF2_EV_CTRL = 7)'), px4Turned.reason);
-    assert.equal(px4Nose.quad.ahrs2Asked, 0);  // never asked of PX4
+    assert.equal(px4Nose.quad.rawImuAsked, 0);  // never asked of PX4
     assert.deepEqual(px4Turned.checked, ['tilt', 'yaw'], JSON.stringify(px4Turned));
     // PX4 on vision yaw: only its magnetometer (HIGHRES_IMU, asked for) sees the nose.
     const px4Blind = (await px4VisionNose.verdict('disagree', 25000, (ag) => ag.fix !== null
@@ -148,7 +148,7 @@ async function main() {
     assert.deepEqual(px4Blind.fix.lines, ['[[vehicle]] body_forward = "+x"'], JSON.stringify(px4Blind.fix));
     assert.deepEqual(px4Blind.checked, ['tilt', 'compass'], JSON.stringify(px4Blind));
     assert.ok(px4VisionNose.quad.imuAsked >= 1);
-    assert.equal(px4VisionNose.quad.ahrs2Asked, 0);
+    assert.equal(px4VisionNose.quad.rawImuAsked, 0);
     console.log(`ok: right axes agree (tilt ${ok.agreement.tilt_offset_deg.toFixed(1)}°, compass `
       + `${ok.agreement.heading_offset_deg.toFixed(1)}°); up = "+y" disagrees (tilt `
       + `${a.tilt_offset_deg.toFixed(1)}°) with ${a.fix.text}; body_forward = "+y" disagrees `

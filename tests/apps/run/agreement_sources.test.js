@@ -3,8 +3,8 @@
 // from mocap +x towards +y, in a z-up world whose +x is north) served by `mocaplink serve
 // --protocol vicon|qtm|natnet|vrpn|vicon-udp --from replay:FILE`, read by the real daemon, and a
 // scripted ArduCopter whose EKF3 takes yaw and position from ExternalNav (EK3_SRC1_YAW = 6,
-// EK3_SRC1_POSXY = 6) with its compass in use (COMPASS_ENABLE = COMPASS_USE = 1), so that it sends
-// AHRS2 (DCM's compass heading) once mocaplink asks for it, as in agreement_axes.test.js.
+// EK3_SRC1_POSXY = 6) with a calibrated compass (COMPASS_ENABLE = 1, offsets not 0), so that it
+// sends RAW_IMU (its compass's field) once mocaplink asks for it, as in agreement_axes.test.js.
 //
 // The vehicle's truth is the recording's pose, turned into NED/FRD here by hand (trueAttitude),
 // not by mocaplink: its IMU's roll and pitch (0, 0) and its compass heading (−30°: a yaw of +30°
@@ -32,7 +32,7 @@
 //          the wrong up, so no `body_up` change fits instead: the fix is unique).
 //   nose   a rigid body created with its left side as the nose: `body_forward = "+y"` (FLU), on
 //          Motive `body_forward = "-z"` (its body is x forward, y up, z right) → tilt agrees, the
-//          compass is 90° off (AHRS2 − mocap = −30° − (−120°)), `disagree`, the fix
+//          compass is 90° off (compass − mocap = −30° − (−120°)), `disagree`, the fix
 //          `[[vehicle]] body_forward = "+x"`, and beside it `[mocap] north = "+y"` (on Motive
 //          `"-z"`: the axis the nose points along), an arena whose north is turned instead: no
 //          pose at rest tells the two apart.
@@ -42,7 +42,7 @@
 //   vicon-config  a Vicon configuration copied (`up = "+z"`, `body_up` default) → tilt 30° (mocap
 //          takes the body's +z, level in Motive's world, for up; it lies 30° from Motive's +z, by
 //          the yaw), the fix `[mocap] up = "+y"` and `[[vehicle]] body_up = "+y"`.
-// The reason is checked whole once AHRS2 has arrived (the fix is named again with the heading).
+// The reason is checked whole once RAW_IMU has arrived (the fix is named again with the heading).
 // Sessions run in three batches (vicon and qtm, natnet, vrpn and vicon-udp) on a 2-core machine.
 'use strict';
 
@@ -151,8 +151,8 @@ async function session(dir, label, source, mocapKeys, vehicleKeys = {}) {
   return { label, run, api, raw, verdict, done, quad };
 }
 
-const NOT_CHECKABLE = 'yaw compared with its compass only (AHRS2, DCM with the compass: '
-  + "COMPASS_USE = 1), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position "
+const NOT_CHECKABLE = 'yaw compared with its compass only (its compass in RAW_IMU: '
+  + "COMPASS_ENABLE = 1, calibrated), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position "
   + "not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
 const TURNED = "; or, if it is the arena's north that is turned (no pose at rest tells the two "
   + 'apart): ';
@@ -222,11 +222,11 @@ async function check(s, c, wire) {
     assert.equal(ok.reason, NOT_CHECKABLE, `${s.label}: ${JSON.stringify(ok)}`);
     assert.ok(ok.tilt_offset_deg < 5, `${s.label}: ${JSON.stringify(ok)}`);
     assert.ok(Math.abs(ok.heading_offset_deg) < 10, `${s.label}: ${JSON.stringify(ok)}`);
-    assert.ok(s.quad.ahrs2Asked >= 1, `${s.label}: AHRS2 never asked for`);
+    assert.ok(s.quad.rawImuAsked >= 1, `${s.label}: RAW_IMU never asked for`);
     return `${s.label}: agree (tilt ${ok.tilt_offset_deg.toFixed(1)}°, compass `
       + `${ok.heading_offset_deg.toFixed(1)}°)`;
   }
-  // A disagreement by tilt is named before AHRS2 arrives, and again with its heading.
+  // A disagreement by tilt is named before RAW_IMU arrives, and again with its heading.
   const bad = (await s.verdict('disagree', 30000, (ag) => ag.fix !== null
     && ag.fix.heading_residual_deg !== null && typeof ag.reason === 'string'
     && ag.reason.endsWith(NOT_CHECKABLE))).agreement;

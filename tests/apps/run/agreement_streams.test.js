@@ -181,10 +181,10 @@ async function main() {
     assert.ok(q.agreement.tilt_offset_deg < 15, JSON.stringify(q.agreement));
     assert.equal(q.agreement.reason,
       "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has no "
-      + "heading of its own (COMPASS_ENABLE = 0: AHRS2's yaw is the gyros' alone): the nose is "
+      + "heading of its own (COMPASS_ENABLE = 0: no compass): the nose is "
       + "unchecked; position not checkable: the vehicle's position comes from mocap "
       + "(EK3_SRC1_POSXY = 6)");
-    assert.equal(q.streams.AHRS2, undefined, JSON.stringify(q.streams));  // not asked for
+    assert.equal(q.streams.RAW_IMU, undefined, JSON.stringify(q.streams));  // not asked for
     assert.equal(q.agreement.fix, null);
     assert.equal(q.streams.ATTITUDE, 'arriving');
     assert.equal(q.streams.LOCAL_POSITION_NED, 'arriving');

@@ -4,15 +4,17 @@
 // it has a compass), all computed here by hand from the raw z-up, FLU truth, not by mocaplink.
 'use strict';
 
-const { MavLinkProtocolV2, ardupilotmega, common, minimal } = require('node-mavlink');
+const { MavLinkProtocolV2, common, minimal } = require('node-mavlink');
 const h = require('./harness');
 
 const { assert, ID } = h;
 const PARAM_REQUEST_READ = 20;
 const EXTERNAL_NAV = ['EK3_SRC1_YAW', 'EK3_SRC1_POSXY'];
-const COMPASS = ['COMPASS_ENABLE', 'COMPASS_USE'];
+// A calibrated compass (SITL's copter.parm offsets), no declination set.
+const COMPASS = { COMPASS_ENABLE: 1, COMPASS_OFS_X: 5, COMPASS_OFS_Y: 13, COMPASS_OFS_Z: -18,
+  COMPASS_DEC: 0 };
 const SET_MESSAGE_INTERVAL = 511;
-const AHRS2 = 178;
+const RAW_IMU = 27;
 
 /// Roll, pitch and yaw (rad) of the NED/FRD attitude of a raw Z-up, FLU quaternion [w, x, y, z].
 function trueAttitude([w, x, y, z]) {
@@ -32,18 +34,18 @@ function trueAttitude([w, x, y, z]) {
 }
 
 /// The scripted ArduCopter: heartbeat 2 Hz, ATTITUDE and LOCAL_POSITION_NED at 5 Hz unasked,
-/// parameter reads answered (EXTERNAL_NAV 6, COMPASS 1, the rest 0), SET_MESSAGE_INTERVAL
-/// accepted, and AHRS2 (its compass heading: the truth's) sent at 5 Hz once asked for. `truth()`
-/// gives the body's raw q.
+/// parameter reads answered (EXTERNAL_NAV 6, COMPASS as above, the rest 0), SET_MESSAGE_INTERVAL
+/// accepted, and RAW_IMU (its compass's field in milligauss, as ArduPilot fills it) sent at 5 Hz
+/// once asked for. `truth()` gives the body's raw q.
 /// With `px4`, a PX4 instead (autopilot 12) whose EKF2 fuses vision position and velocity but takes
 /// its yaw from the magnetometer (EKF2_EV_CTRL 7, answered bytewise as PX4 does): its ATTITUDE yaw
-/// is then the truth's, and it has no AHRS2. With `visionYaw` as well, EKF2_EV_CTRL 15: its yaw is
-/// mocap's fed back, and its magnetometer (SYS_HAS_MAG 1) is sent in HIGHRES_IMU once asked for:
-/// Earth's field (0.2 G north, 0.4 G down) turned into the body by the truth's attitude.
+/// is then the truth's, and it sends no RAW_IMU. With `visionYaw` as well, EKF2_EV_CTRL 15: its yaw
+/// is mocap's fed back, and its magnetometer (SYS_HAS_MAG 1) is sent in HIGHRES_IMU once asked for.
+/// Either field: Earth's (0.2 G north, 0.4 G down) turned into the body by the truth's attitude.
 const EARTH_FIELD_NED = [0.2, 0, 0.4];
 const HIGHRES_IMU = 105;
 function externalNavVehicle(vehicle, sysid, truth, { px4 = false, visionYaw = false } = {}) {
-  const s = { odometry: null, ahrs2Asked: 0, imuAsked: 0 };
+  const s = { odometry: null, rawImuAsked: 0, imuAsked: 0 };
   let seq = 0;
   const send = (m) => vehicle.send(new MavLinkProtocolV2(sysid, 1).serialize(m, seq++ & 255));
   const bootStart = performance.now() - 60000;  // up for a minute: settled
@@ -58,7 +60,7 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false, visionYaw = fa
       a.targetSystem = packet.header.sysid;
       a.targetComponent = packet.header.compid;
       send(a);
-      if (Math.round(m._param1) === AHRS2) s.ahrs2Asked += 1;
+      if (Math.round(m._param1) === RAW_IMU) s.rawImuAsked += 1;
       if (Math.round(m._param1) === HIGHRES_IMU) s.imuAsked += 1;
     }
     if (packet.header.msgid === PARAM_REQUEST_READ && m.targetSystem === sysid) {
@@ -70,9 +72,12 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false, visionYaw = fa
         bits.writeInt32LE(values[v.paramId] ?? 0);
         v.paramType = 6;  // INT32, its bytes in the float (PX4's bytewise encoding)
         v.paramValue = bits.readFloatLE(0);
+      } else if (v.paramId in COMPASS && v.paramId !== 'COMPASS_ENABLE') {
+        v.paramType = 9;  // REAL32
+        v.paramValue = COMPASS[v.paramId];
       } else {
         v.paramType = 2;  // INT8, the value cast to float as ArduPilot sends it
-        v.paramValue = EXTERNAL_NAV.includes(v.paramId) ? 6 : COMPASS.includes(v.paramId) ? 1 : 0;
+        v.paramValue = EXTERNAL_NAV.includes(v.paramId) ? 6 : COMPASS[v.paramId] ?? 0;
       }
       v.paramCount = 1;
       v.paramIndex = 65535;
@@ -94,17 +99,17 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false, visionYaw = fa
     const bootMs = Math.round(performance.now() - bootStart);
     const [w, x, y, z] = o.q;
     const { roll, pitch, yaw } = trueAttitude(q);
+    // Body field = Rᵀ · B with R = Rz(yaw) · Ry(pitch) · Rx(roll), by hand.
+    const [cr, sr, cp, sp, cy, sy] = [Math.cos(roll), Math.sin(roll), Math.cos(pitch),
+      Math.sin(pitch), Math.cos(yaw), Math.sin(yaw)];
+    const R = [
+      [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+      [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+      [-sp, cp * sr, cp * cr],
+    ];
+    const b = [0, 1, 2].map((j) => R[0][j] * EARTH_FIELD_NED[0] + R[1][j] * EARTH_FIELD_NED[1]
+      + R[2][j] * EARTH_FIELD_NED[2]);
     if (px4 && s.imuAsked > 0) {
-      // Body field = Rᵀ · B with R = Rz(yaw) · Ry(pitch) · Rx(roll), by hand.
-      const [cr, sr, cp, sp, cy, sy] = [Math.cos(roll), Math.sin(roll), Math.cos(pitch),
-        Math.sin(pitch), Math.cos(yaw), Math.sin(yaw)];
-      const R = [
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-      ];
-      const b = [0, 1, 2].map((j) => R[0][j] * EARTH_FIELD_NED[0] + R[1][j] * EARTH_FIELD_NED[1]
-        + R[2][j] * EARTH_FIELD_NED[2]);
       const imu = new common.HighresImu();
       imu.timeUsec = BigInt(Math.round((performance.now() - bootStart) * 1000));
       [imu.xmag, imu.ymag, imu.zmag] = b;
@@ -112,12 +117,12 @@ function externalNavVehicle(vehicle, sysid, truth, { px4 = false, visionYaw = fa
       imu.fieldsUpdated = 0x1FF;  // accel, gyro and magnetometer of this sample
       send(imu);
     }
-    if (s.ahrs2Asked > 0 && !px4) {
-      const c = new ardupilotmega.Ahrs2();
-      c.roll = roll;
-      c.pitch = pitch;
-      c.yaw = yaw;  // DCM's, from the compass: the body's true heading
-      send(c);
+    if (s.rawImuAsked > 0 && !px4) {
+      const raw = new common.RawImu();
+      raw.timeUsec = BigInt(Math.round((performance.now() - bootStart) * 1000));
+      [raw.xmag, raw.ymag, raw.zmag] = b.map((gauss) => Math.round(gauss * 1000));  // mG
+      raw.zacc = -1000;
+      send(raw);
     }
     const a = new common.Attitude();
     a.timeBootMs = bootMs;

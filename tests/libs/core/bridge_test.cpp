@@ -603,8 +603,8 @@ TEST(BridgeVehicles, AnUpAxisMistakeWithExternalNavYawDisagreesAndNamesTheFix) {
       "; fix: [mocap] up = \"+z\" (then tilt 0.0°, nose unchecked: the vehicle has no heading of "
       "its own); or, as well at this pose: [[vehicle]] body_up = \"+y\"; yaw not checkable: the "
       "vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has no heading of its own "
-      "(COMPASS_ENABLE = 0: AHRS2's yaw is the gyros' alone): the nose is unchecked; position "
-      "not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
+      "(COMPASS_ENABLE = 0: no compass): the nose is unchecked; position not checkable: the "
+      "vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)";
   ASSERT_GE(last.size(), tail.size());
   EXPECT_EQ(last.substr(last.size() - tail.size()), tail) << last;
 }
@@ -617,8 +617,8 @@ TEST(BridgeVehicles, TheRightAxesWithExternalNavAgreeOnGravityAlone) {
   ASSERT_FALSE(events.empty());
   const std::string tail =
       "; yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has no "
-      "heading of its own (COMPASS_ENABLE = 0: AHRS2's yaw is the gyros' alone): the nose is "
-      "unchecked; position not checkable: the vehicle's position comes from mocap "
+      "heading of its own (COMPASS_ENABLE = 0: no compass): the nose is unchecked; position not "
+      "checkable: the vehicle's position comes from mocap "
       "(EK3_SRC1_POSXY = 6)";
   const std::string& last = events.back();
   EXPECT_EQ(last.rfind("estimate agrees, tilt offset 0.", 0), 0U) << last;

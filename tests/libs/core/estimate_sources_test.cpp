@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -73,52 +74,81 @@ TEST(EstimateSources, UnreadParametersAreUnknownAndSaySo) {
             "autopilot says where they come from)");
 }
 
-TEST(EstimateSources, ArduPilotAhrs2IsAHeadingOfItsOwnOnlyWithTheCompassInUse) {
-  // Issue 48: AHRS2 is DCM's attitude while EKF3 is active, and DCM corrects its yaw with the
-  // compass when COMPASS_ENABLE and COMPASS_USE are set (AP_AHRS_DCM::use_compass, 4.5).
+TEST(EstimateSources, ArduPilotsCompassIsAHeadingOfItsOwnOnceEnabledAndCalibrated) {
+  // Issue 48: RAW_IMU carries the primary compass's field whenever COMPASS_ENABLE is set,
+  // whether or not COMPASS_USE lets the EKF use it (4.5 send_raw_imu, Copter's update of the
+  // compass); a compass is calibrated by ArduPilot's own test once its offsets are not all 0.
   const auto with = [](std::map<std::string, double> compass) {
     compass.emplace("EK3_SRC1_YAW", 6);
     compass.emplace("EK3_SRC1_POSXY", 6);
     return estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision,
                             params(std::move(compass)));
   };
-  const auto in_use = with({{"COMPASS_ENABLE", 1}, {"COMPASS_USE", 1}});
-  EXPECT_EQ(in_use.heading.source, EstimateSource::independent);
+  const std::map<std::string, double> calibrated{{"COMPASS_ENABLE", 1},
+                                                 {"COMPASS_OFS_X", 5},
+                                                 {"COMPASS_OFS_Y", 13},
+                                                 {"COMPASS_OFS_Z", -18},
+                                                 {"COMPASS_DEC", 0.2}};
+  const auto in_use = with(calibrated);
+  EXPECT_EQ(in_use.heading, (QuantitySource{EstimateSource::independent,
+                                            "its compass in RAW_IMU: COMPASS_ENABLE = 1, "
+                                            "calibrated"}));
+  EXPECT_DOUBLE_EQ(in_use.declination_rad, 0.2);
   EXPECT_TRUE(checks_second_heading(in_use));
   EXPECT_EQ(describe_unchecked(in_use),
-            "yaw compared with its compass only (AHRS2, DCM with the compass: COMPASS_USE = 1), "
-            "45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); position not "
-            "checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = 6)");
+            "yaw compared with its compass only (its compass in RAW_IMU: COMPASS_ENABLE = 1, "
+            "calibrated), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); "
+            "position not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = "
+            "6)");
   // Wanted but not arrived: not claimed.
   EXPECT_EQ(describe_unchecked(in_use, false),
             "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6); its compass "
-            "heading (AHRS2, DCM with the compass: COMPASS_USE = 1) has not arrived: the nose is "
-            "unchecked; position not checkable: the vehicle's position comes from mocap "
+            "heading (its compass in RAW_IMU: COMPASS_ENABLE = 1, calibrated) has not arrived: the "
+            "nose is unchecked; position not checkable: the vehicle's position comes from mocap "
             "(EK3_SRC1_POSXY = 6)");
-  const auto unused = with({{"COMPASS_ENABLE", 1}, {"COMPASS_USE", 0}});
-  EXPECT_EQ(unused.heading, (QuantitySource{EstimateSource::none,
-                                            "COMPASS_USE = 0: AHRS2's yaw is the gyros' alone"}));
-  EXPECT_FALSE(checks_second_heading(unused));
-  EXPECT_EQ(describe_unchecked(unused),
+  // COMPASS_USE does not decide (ArduPilot's ExternalNav guides set it 0): not even read.
+  auto unused = calibrated;
+  unused.emplace("COMPASS_USE", 0);
+  EXPECT_EQ(with(unused).heading, in_use.heading);
+  // One offset not 0 is calibrated; all 0 is not, and an uncalibrated compass is no heading.
+  auto one = calibrated;
+  one["COMPASS_OFS_X"] = 0;
+  one["COMPASS_OFS_Y"] = 0;
+  EXPECT_EQ(with(one).heading.source, EstimateSource::independent);
+  one["COMPASS_OFS_Z"] = 0;
+  const auto raw = with(one);
+  EXPECT_EQ(raw.heading, (QuantitySource{EstimateSource::none,
+                                         "COMPASS_OFS_X, _Y and _Z = 0: its compass is not "
+                                         "calibrated, so its field is no heading"}));
+  EXPECT_FALSE(checks_second_heading(raw));
+  EXPECT_EQ(describe_unchecked(with({{"COMPASS_ENABLE", 0}})),
             "yaw not checkable: the vehicle's yaw comes from mocap (EK3_SRC1_YAW = 6), and it has "
-            "no heading of its own (COMPASS_USE = 0: AHRS2's yaw is the gyros' alone): the nose "
-            "is unchecked; position not checkable: the vehicle's position comes from mocap "
-            "(EK3_SRC1_POSXY = 6)");
-  const auto disabled = with({{"COMPASS_ENABLE", 0}, {"COMPASS_USE", 1}});
-  EXPECT_EQ(disabled.heading.source, EstimateSource::none);
-  const auto unread = with({{"COMPASS_USE", 1}});
-  EXPECT_EQ(unread.heading, (QuantitySource{EstimateSource::unknown, "COMPASS_ENABLE"}));
+            "no heading of its own (COMPASS_ENABLE = 0: no compass): the nose is unchecked; "
+            "position not checkable: the vehicle's position comes from mocap (EK3_SRC1_POSXY = "
+            "6)");
+  // Not read yet: unknown, naming the first missing; the declination alone is not waited for.
+  const auto unread = with({{"COMPASS_ENABLE", 1}, {"COMPASS_OFS_X", 5}});
+  EXPECT_EQ(unread.heading, (QuantitySource{EstimateSource::unknown, "COMPASS_OFS_Y"}));
   EXPECT_FALSE(checks_second_heading(unread));
+  EXPECT_EQ(with({}).heading, (QuantitySource{EstimateSource::unknown, "COMPASS_ENABLE"}));
+  auto no_declination = calibrated;
+  no_declination.erase("COMPASS_DEC");
+  EXPECT_EQ(with(no_declination).heading.source, EstimateSource::independent);
+  EXPECT_DOUBLE_EQ(with(no_declination).declination_rad, 0.0);
   // A yaw of the vehicle's own (compass yaw) needs no second heading.
-  const auto compass_yaw =
-      estimate_sources(AutopilotFamily::ardupilot, std::nullopt, SetupInput::vision,
-                       params({{"EK3_SRC1_YAW", 1}, {"COMPASS_ENABLE", 1}, {"COMPASS_USE", 1}}));
+  auto own_yaw = calibrated;
+  own_yaw.emplace("EK3_SRC1_YAW", 1);
+  const auto compass_yaw = estimate_sources(AutopilotFamily::ardupilot, std::nullopt,
+                                            SetupInput::vision, params(own_yaw));
   EXPECT_EQ(compass_yaw.heading.source, EstimateSource::none);
   EXPECT_FALSE(checks_second_heading(compass_yaw));
-  ASSERT_EQ(source_parameters(AutopilotFamily::ardupilot).size(), 2U);
-  EXPECT_EQ(source_parameters(AutopilotFamily::ardupilot)[1], "COMPASS_USE");
-  ASSERT_EQ(source_parameters(AutopilotFamily::px4).size(), 1U);
-  EXPECT_EQ(source_parameters(AutopilotFamily::px4)[0], "SYS_HAS_MAG");
+  EXPECT_EQ(std::vector<std::string_view>(source_parameters(AutopilotFamily::ardupilot).begin(),
+                                          source_parameters(AutopilotFamily::ardupilot).end()),
+            (std::vector<std::string_view>{"COMPASS_ENABLE", "COMPASS_OFS_X", "COMPASS_OFS_Y",
+                                           "COMPASS_OFS_Z", "COMPASS_DEC"}));
+  EXPECT_EQ(std::vector<std::string_view>(source_parameters(AutopilotFamily::px4).begin(),
+                                          source_parameters(AutopilotFamily::px4).end()),
+            (std::vector<std::string_view>{"SYS_HAS_MAG", "EKF2_MAG_DECL"}));
   EXPECT_TRUE(source_parameters(AutopilotFamily::other).empty());
 }
 
@@ -130,6 +160,11 @@ TEST(EstimateSources, Px4WithVisionYawHasItsMagnetometerWhereItHasOne) {
   EXPECT_EQ(with_mag.heading, (QuantitySource{EstimateSource::independent,
                                               "the magnetometer in HIGHRES_IMU: SYS_HAS_MAG = 1"}));
   EXPECT_TRUE(checks_second_heading(with_mag));
+  EXPECT_DOUBLE_EQ(with_mag.declination_rad, 0.0);  // EKF2_MAG_DECL not read: 0
+  const auto declined =
+      estimate_sources(AutopilotFamily::px4, v1_14, SetupInput::vision,
+                       params({{"EKF2_EV_CTRL", 15}, {"SYS_HAS_MAG", 1}, {"EKF2_MAG_DECL", 90}}));
+  EXPECT_NEAR(declined.declination_rad, 1.5707963267948966, 1e-15);  // degrees there
   const auto no_mag = estimate_sources(AutopilotFamily::px4, v1_14, SetupInput::vision,
                                        params({{"EKF2_EV_CTRL", 15}, {"SYS_HAS_MAG", 0}}));
   EXPECT_EQ(no_mag.heading.source, EstimateSource::none);

@@ -73,10 +73,19 @@ struct Vehicle {
     } else if (const auto* r = std::get_if<mavlink::ParamRequestRead>(&sent)) {
       const std::string name = id_of(r->param_id);
       // Every firmware has its compass parameters (read for the agreement's second heading,
-      // estimate_sources.hpp): answered as a vehicle with a compass unless the table says.
-      if (params.count(name) == 0 &&
-          (px4 ? name == "SYS_HAS_MAG" : name == "COMPASS_ENABLE" || name == "COMPASS_USE")) {
-        params[name] = {1, px4 ? kInt32 : kInt8};
+      // estimate_sources.hpp): answered as a vehicle with a calibrated compass unless the table
+      // says (SITL's copter.parm offsets).
+      if (params.count(name) == 0) {
+        static const std::map<std::string, std::pair<double, std::uint8_t>> kPx4{
+            {"SYS_HAS_MAG", {1, kInt32}}, {"EKF2_MAG_DECL", {0, kReal32}}};
+        static const std::map<std::string, std::pair<double, std::uint8_t>> kArdu{
+            {"COMPASS_ENABLE", {1, kInt8}},
+            {"COMPASS_OFS_X", {5, kReal32}},
+            {"COMPASS_OFS_Y", {13, kReal32}},
+            {"COMPASS_OFS_Z", {-18, kReal32}},
+            {"COMPASS_DEC", {0, kReal32}}};
+        const auto& defaults = px4 ? kPx4 : kArdu;
+        if (const auto it = defaults.find(name); it != defaults.end()) params[name] = it->second;
       }
       if (params.count(name) != 0) out.emplace_back(value(name));  // unknown: silence (both)
     } else if (const auto* s = std::get_if<mavlink::ParamSet>(&sent)) {
@@ -163,8 +172,9 @@ TEST(VehicleSetup, ReadsEachParameterOnceAndFindsTheWrongOnes) {
   EXPECT_EQ(snap.autopilot, AutopilotFamily::px4);
   ASSERT_TRUE(snap.version);
   EXPECT_EQ(to_string(*snap.version), "1.14.3");
-  // One each, all answered: the 5 of the list and SYS_HAS_MAG (the agreement's second heading).
-  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 6U);
+  // One each, all answered: the 5 of the list, SYS_HAS_MAG and EKF2_MAG_DECL (the agreement's
+  // second heading).
+  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 7U);
   EXPECT_EQ(snap.state, SetupState::blocked);
   const SetupLine* ev = h.line("EKF2_EV_CTRL");
   ASSERT_NE(ev, nullptr);
@@ -198,7 +208,7 @@ TEST(VehicleSetup, AMissingParameterIsAskedThreeTimesThenMissing) {
   px4_defaults(h.vehicle);
   h.vehicle.params.erase("EKF2_EV_CTRL");  // e.g. a build without it
   h.run(6000);
-  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 5U + kParamAttempts);
+  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 6U + kParamAttempts);
   const SetupLine* ev = h.line("EKF2_EV_CTRL");
   ASSERT_NE(ev, nullptr);
   EXPECT_EQ(ev->item.status, SetupStatus::missing);
@@ -212,7 +222,7 @@ TEST(VehicleSetup, NoAnswerAtAll) {
   h.run(30000);
   EXPECT_EQ(h.times_of<mavlink::CommandLong>().size(), kVersionAttempts);
   EXPECT_EQ(h.setup.state(), SetupState::no_answer);
-  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 6U * kParamAttempts);
+  EXPECT_EQ(h.times_of<mavlink::ParamRequestRead>().size(), 7U * kParamAttempts);
   EXPECT_TRUE(std::any_of(h.notes.begin(), h.notes.end(), [](const std::string& n) {
     return n.find("newest firmware's parameter names") != std::string::npos;
   }));
@@ -242,13 +252,14 @@ TEST(VehicleSetup, ArduPilotCastIntegers) {
                       {"EK3_SRC1_POSZ", {1, kInt8}},   {"EK3_SRC1_VELZ", {3, kInt8}},
                       {"EK3_SRC1_YAW", {1, kInt8}},    {"GPS1_TYPE", {1, kInt8}},
                       {"VISO_DELAY_MS", {10, kInt16}}, {"COMPASS_ENABLE", {1, kInt8}},
-                      {"COMPASS_USE", {0, kInt8}}};
+                      {"COMPASS_OFS_X", {0, kReal32}}};
   h.run(4000);
   EXPECT_EQ(h.setup.state(), SetupState::blocked);
   // Read for the agreement check's second heading (estimate_sources.hpp), with no line.
   EXPECT_EQ(h.setup.parameter("COMPASS_ENABLE"), 1.0);
-  EXPECT_EQ(h.setup.parameter("COMPASS_USE"), 0.0);
-  EXPECT_EQ(h.line("COMPASS_USE"), nullptr);
+  EXPECT_EQ(h.setup.parameter("COMPASS_OFS_X"), 0.0);
+  EXPECT_EQ(h.setup.parameter("COMPASS_OFS_Z"), -18.0);
+  EXPECT_EQ(h.line("COMPASS_OFS_X"), nullptr);
   EXPECT_EQ(h.line("VISO_TYPE")->item.current, 0.0);
   EXPECT_EQ(h.line("VISO_TYPE")->item.severity, SetupSeverity::blocks);
   EXPECT_EQ(h.line("AHRS_EKF_TYPE")->item.status, SetupStatus::ok);

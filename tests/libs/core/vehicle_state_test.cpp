@@ -505,27 +505,34 @@ TEST(VehicleAgreement, UpAxisMistakeWithExternalNavYawDisagreesOnGravity) {
   EXPECT_NEAR(*v.agreement().yaw_offset_deg, 0.0, 1e-4);
 }
 
-/// ArduCopter with EKF3 yaw and position from ExternalNav and its compass in use: AHRS2 (DCM's
-/// compass heading) is the nose's one reference (estimate_sources.hpp).
+/// ArduCopter with EKF3 yaw and position from ExternalNav and a calibrated compass: its field in
+/// RAW_IMU is the nose's one reference (estimate_sources.hpp).
 EstimateSources external_nav_with_compass() {
   EstimateSources s{{EstimateSource::mocap, "EK3_SRC1_YAW = 6"},
                     {EstimateSource::mocap, "EK3_SRC1_POSXY = 6"}};
-  s.heading = {EstimateSource::independent, "AHRS2, DCM with the compass: COMPASS_USE = 1"};
+  s.heading = {EstimateSource::independent,
+               "its compass in RAW_IMU: COMPASS_ENABLE = 1, calibrated"};
   return s;
 }
 
-mavlink::Ahrs2 ahrs2(double yaw_rad) {
-  mavlink::Ahrs2 a;
-  a.yaw = static_cast<float>(yaw_rad);
-  return a;
+/// ArduPilot's RAW_IMU from a level vehicle whose nose is `heading_rad` east of magnetic north:
+/// Earth's field 250 mG north, 450 mG down seen in the body frame, rounded as the int16 fields
+/// are (so headings are good to ~0.2°).
+mavlink::RawImu raw_imu(double heading_rad) {
+  const auto mg = [](double v) { return static_cast<std::int16_t>(std::lround(v)); };
+  mavlink::RawImu m;
+  m.xmag = mg(250.0 * std::cos(heading_rad));
+  m.ymag = mg(-250.0 * std::sin(heading_rad));
+  m.zmag = mg(450.0);
+  return m;
 }
 
-/// stream() with AHRS2 at `heading_rad` before each ATTITUDE.
+/// stream() with RAW_IMU at `heading_rad` before each ATTITUDE.
 std::int64_t stream_with_heading(VehicleState& v, const BodyEstimate& mocap, double heading_rad,
                                  std::int64_t from_ms, std::int64_t to_ms, AgreementVerdict watch) {
   std::int64_t first = -1;
   for (std::int64_t t = from_ms; t <= to_ms; t += 200) {
-    const auto r0 = v.on_message(from(1, 1, ahrs2(heading_rad)), at_ms(t), &mocap);
+    const auto r0 = v.on_message(from(1, 1, raw_imu(heading_rad)), at_ms(t), &mocap);
     const auto r1 = stream(v, mocap, 0.0, 0.0F, t, t, -60'000, watch);
     if (first < 0 && r1 >= 0) first = r1;
     (void)r0;
@@ -536,7 +543,7 @@ std::int64_t stream_with_heading(VehicleState& v, const BodyEstimate& mocap, dou
 TEST(VehicleAgreement, NoseMistakeWithExternalNavYawDisagreesOnTheCompass) {
   // Issue 48: the body was created nose-left, so mocap's yaw is 90° off the vehicle's real
   // heading; EKF3 fuses that yaw and reports it back (yaw offset 0), on the ground the positions
-  // coincide, the tilt is level in both. Only the compass (AHRS2: east, 90°) tells.
+  // coincide, the tilt is level in both. Only the compass (RAW_IMU: east, 90°) tells.
   VehicleState v(VehicleStateConfig{});
   (void)v.set_estimate_sources(external_nav_with_compass(), HostTime{});
   EXPECT_TRUE(v.heading_wanted());
@@ -552,28 +559,56 @@ TEST(VehicleAgreement, ACompassWithin45DegreesAgreesAndItsAbsenceKeepsTheVerdict
   VehicleState v(VehicleStateConfig{});
   (void)v.set_estimate_sources(external_nav_with_compass(), HostTime{});
   const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
-  // No AHRS2 yet: the nose is not checked, so no agreement.
+  // No RAW_IMU yet: the nose is not checked, so no agreement.
   EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 0, 2'000, -60'000, AgreementVerdict::agree), -1);
   EXPECT_FALSE(v.agreement().heading_offset_deg);
   // A compass 30° off (steel in the floor) still agrees: 45° is the limit.
   EXPECT_EQ(
       stream_with_heading(v, mocap, 30.0 * kPi / 180.0, 2'200, 3'000, AgreementVerdict::agree),
       2'200);
-  EXPECT_NEAR(*v.agreement().heading_offset_deg, 30.0, 1e-4);
-  // AHRS2 stops: older than kHeadingFresh it is not compared, and the agreement lapses.
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 30.0, 0.2);
+  // RAW_IMU stops: older than kHeadingFresh it is not compared, and the agreement lapses.
   (void)stream(v, mocap, 0.0, 0.0F, 3'200, 3'800, -60'000, AgreementVerdict::unknown);
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);  // 0.8 s: still fresh
   EXPECT_EQ(stream(v, mocap, 0.0, 0.0F, 4'000, 4'400, -60'000, AgreementVerdict::unknown), 4'200);
   EXPECT_FALSE(v.agreement().heading_offset_deg);
   // With no compass in use the sources say so, and the check agrees without a heading.
   EstimateSources no_compass = external_nav_with_compass();
-  no_compass.heading = {EstimateSource::none, "COMPASS_USE = 0: AHRS2's yaw is the gyros' alone"};
+  no_compass.heading = {EstimateSource::none, "COMPASS_ENABLE = 0: no compass"};
   EXPECT_TRUE(v.set_estimate_sources(no_compass, at_ms(4'500)).agreement_changed);
   EXPECT_FALSE(v.heading_wanted());
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
   EXPECT_EQ(stream_with_heading(v, mocap, kPi, 4'600, 8'000, AgreementVerdict::disagree), -1);
   EXPECT_EQ(v.agreement().verdict, AgreementVerdict::agree);
-  EXPECT_FALSE(v.agreement().heading_offset_deg);  // AHRS2 arriving, not compared
+  EXPECT_FALSE(v.agreement().heading_offset_deg);  // RAW_IMU arriving, not compared
+}
+
+TEST(VehicleAgreement, TheCompassHeadingTakesTheVehiclesDeclination) {
+  // A nose 20° east of true north where the declination is 12° east: the compass reads 8°
+  // magnetic; COMPASS_DEC (0.2094 rad) makes it 20° true, the 20° mocap says: offset 0.
+  VehicleState v(VehicleStateConfig{});
+  EstimateSources s = external_nav_with_compass();
+  s.declination_rad = 12.0 * kPi / 180.0;
+  (void)v.set_estimate_sources(s, HostTime{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 20.0 * kPi / 180.0);
+  (void)stream_with_heading(v, mocap, 8.0 * kPi / 180.0, 0, 1'000, AgreementVerdict::agree);
+  ASSERT_TRUE(v.agreement().heading_offset_deg);
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 0.0, 0.2);
+  EXPECT_NEAR(*v.agreement().heading_rad, 20.0 * kPi / 180.0, 0.2 * kPi / 180.0);
+}
+
+TEST(VehicleAgreement, AnAllZeroRawImuFieldIsNoCompass) {
+  // ArduPilot fills RAW_IMU's field with zeros where it has no compass: no heading, so the nose
+  // stays unchecked and nothing agrees on it.
+  VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(external_nav_with_compass(), HostTime{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 0.0);
+  for (std::int64_t t = 0; t <= 2'000; t += 200) {
+    (void)v.on_message(from(1, 1, mavlink::RawImu{}), at_ms(t), &mocap);
+    (void)stream(v, mocap, 0.0, 0.0F, t, t, -60'000, AgreementVerdict::agree);
+  }
+  EXPECT_FALSE(v.agreement().heading_offset_deg);
+  EXPECT_NE(v.agreement().verdict, AgreementVerdict::agree);
 }
 
 TEST(MagneticHeading, IsTheLevelledFieldsDirection) {

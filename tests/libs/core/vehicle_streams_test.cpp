@@ -446,9 +446,9 @@ TEST(VehicleStreams, AnotherAutopilotIsNeverAskedForItsEstimator) {
   EXPECT_TRUE(asked_of(VehicleStream::attitude, 0));
 }
 
-TEST(VehicleStreams, Ahrs2IsAskedOfAnArduPilotOnlyWhileItsHeadingIsWanted) {
-  // Issue 48: AHRS2 (DCM's compass heading) is the nose's one reference where EKF3 takes yaw
-  // from mocap; it is asked for only then, and of ArduPilot only.
+TEST(VehicleStreams, RawImuIsAskedOfAnArduPilotOnlyWhileItsHeadingIsWanted) {
+  // Issue 48: RAW_IMU (its compass's field) is the nose's one reference where EKF3 takes yaw
+  // from mocap; it is asked for only then.
   Harness h;
   const auto feed = [&h](std::int64_t to_ms) {
     for (std::int64_t t = h.now_ms; t <= to_ms; t += 100) {
@@ -464,25 +464,26 @@ TEST(VehicleStreams, Ahrs2IsAskedOfAnArduPilotOnlyWhileItsHeadingIsWanted) {
   feed(10'300);
   auto commands = h.commands();
   ASSERT_EQ(commands.size(), 1U);
-  EXPECT_EQ(commands[0].param1, 178.0F);      // AHRS2
+  EXPECT_EQ(commands[0].param1, 27.0F);       // RAW_IMU
   EXPECT_EQ(commands[0].param2, 500'000.0F);  // µs: 2 Hz
-  EXPECT_TRUE(h.logged("asking for AHRS2 at 2 Hz (SET_MESSAGE_INTERVAL 178, 500000 us)"));
+  EXPECT_TRUE(h.logged("asking for RAW_IMU at 2 Hz (SET_MESSAGE_INTERVAL 27, 500000 us)"));
   h.receive(ack(0));
-  h.receive(mavlink::Ahrs2{});
+  h.receive(mavlink::RawImu{});
   EXPECT_EQ(h.state(VehicleStream::heading), StreamState::arriving);
   // No longer wanted (the set-up list now reads EK3_SRC1_YAW = 1): when it stops it is not
   // asked for again.
   h.target.want_heading = false;
   feed(20'000);
   EXPECT_EQ(h.commands().size(), 1U);
-  EXPECT_EQ(data_stream_id(VehicleStream::heading), 12);  // EXTRA3 on ArduPilot
+  EXPECT_EQ(data_stream_id(VehicleStream::heading), 1);  // RAW_SENSORS on ArduPilot
+  EXPECT_EQ(data_stream_name(VehicleStream::heading), "RAW_SENSORS");
   EXPECT_TRUE(asked_of(VehicleStream::heading, kMavAutopilotArdupilot));
   EXPECT_TRUE(asked_of(VehicleStream::heading, kMavAutopilotPx4));
   EXPECT_FALSE(asked_of(VehicleStream::heading, 0));
 }
 
 TEST(VehicleStreams, Px4IsAskedForHighresImuInstead) {
-  // PX4 has no AHRS2; its magnetometer's field is in HIGHRES_IMU (105).
+  // PX4 sends no RAW_IMU; its magnetometer's field is in HIGHRES_IMU (105).
   Harness h;
   h.estimator_streams = false;
   h.target.autopilot = kMavAutopilotPx4;

@@ -153,8 +153,8 @@ struct AgreementView {
   std::optional<double> tilt_offset_deg{};
   /// While the verdict is disagree: the fix (docs/api.md `agreement.fix`); null otherwise.
   std::optional<AxisFixView> fix{};
-  /// The compass heading (AHRS2, PX4's HIGHRES_IMU) − mocap yaw, where the vehicle's yaw is
-  /// mocap's and it has a compass (estimate_sources.hpp); null otherwise.
+  /// The compass heading (ArduPilot's RAW_IMU, PX4's HIGHRES_IMU) − mocap yaw, where the vehicle's
+  /// yaw is mocap's and it has a compass (estimate_sources.hpp); null otherwise.
   std::optional<double> heading_offset_deg{};
   /// What the comparison measured against something of the vehicle's own, in this order:
   /// "tilt" (always), "yaw", "position", "compass" (once compared); what came from mocap is

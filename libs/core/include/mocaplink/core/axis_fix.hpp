@@ -73,8 +73,8 @@ struct AxisSettings {
 struct VehicleAtRest {
   double roll_rad = 0.0;   ///< ATTITUDE roll (IMU)
   double pitch_rad = 0.0;  ///< ATTITUDE pitch (IMU)
-  /// A heading independent of mocap (rad, from north, NED yaw), e.g. ArduPilot's AHRS2 (DCM,
-  /// compass) while EKF3 takes yaw from ExternalNav; nullopt when the vehicle has none.
+  /// A heading independent of mocap (rad, from north, NED yaw), e.g. its compass's
+  /// (RAW_IMU's field) while EKF3 takes yaw from ExternalNav; nullopt when the vehicle has none.
   std::optional<double> heading_rad;
 };
 

@@ -17,17 +17,23 @@
 // A parameter not read (yet, or never answered) leaves that quantity `unknown`: the check then
 // never agrees on it (it says so), rather than guess.
 //
-// A second heading, for a vehicle whose yaw comes from mocap (issue 48): ArduPilot sends AHRS2,
-// the attitude of its secondary estimator, which is DCM while EKF3 is the active one (AP_AHRS
-// _get_secondary_EKF_type, 4.5); DCM corrects its yaw with the compass whenever the compass is
-// used for yaw (AP_AHRS_DCM::use_compass: COMPASS_ENABLE and COMPASS_USE set, the compass
-// healthy), whatever EK3_SRC1_YAW says. So with COMPASS_ENABLE = 1 and COMPASS_USE = 1 AHRS2's
-// yaw is a heading of the vehicle's own; with either 0, DCM's yaw only integrates the gyros from
-// wherever it started, and is no reference (`none`). PX4's ATTITUDE and VFR_HUD both carry EKF2's
-// yaw, but HIGHRES_IMU carries its magnetometer's field (vehicle_magnetometer less EKF2's bias,
-// body FRD, gauss; v1.14 streams/HIGHRES_IMU.hpp), published whenever SYS_HAS_MAG = 1 whatever
-// EKF2 fuses: tilt-compensated with ATTITUDE's roll and pitch it is a magnetic heading of the
-// vehicle's own. SYS_HAS_MAG = 0 → `none`. Over uXRCE-DDS nothing is read: `none`. Pure.
+// A second heading, for a vehicle whose yaw comes from mocap (issue 48): its magnetometer's
+// field, tilt-compensated here with ATTITUDE's roll and pitch, plus the declination the vehicle
+// is configured with — a magnetic heading of the vehicle's own, whatever its estimator fuses.
+//   ArduPilot  RAW_IMU's xmag/ymag/zmag: 4.5's GCS_MAVLINK::send_raw_imu fills them with
+//              Compass::get_field(0), the primary compass's corrected field (offsets, scale,
+//              motor compensation) in the body frame, milligauss — read whenever COMPASS_ENABLE
+//              is set, whether or not COMPASS_USE lets EKF3 or DCM use it for yaw (ArduPilot's
+//              ExternalNav guides set COMPASS_USE = 0; AHRS2's DCM yaw is then the gyros'
+//              alone, seen on SITL). Judged a heading only once calibrated, by ArduPilot's own
+//              test (Compass::configured: COMPASS_OFS_X/Y/Z not all 0): an uncalibrated
+//              compass on a vehicle is tens of degrees off and would name a wrong nose.
+//              COMPASS_ENABLE = 0 or uncalibrated → `none`. Declination: COMPASS_DEC (rad).
+//   PX4        HIGHRES_IMU (vehicle_magnetometer less EKF2's bias, body FRD, gauss; v1.14
+//              streams/HIGHRES_IMU.hpp), published whenever SYS_HAS_MAG = 1 whatever EKF2 fuses.
+//              SYS_HAS_MAG = 0 → `none`. Declination: EKF2_MAG_DECL (deg).
+// A declination not read counts as 0 (a few degrees against the 45° allowed). Over uXRCE-DDS
+// nothing is read: `none`. Pure.
 #pragma once
 
 #include <cstdint>
@@ -66,10 +72,13 @@ struct EstimateSources {
   QuantitySource yaw;
   QuantitySource position;
   /// A second heading to check mocap's yaw against when `yaw` comes from mocap: independent
-  /// (ArduPilot's AHRS2 with the compass in use, PX4's magnetometer), none (no compass), unknown
-  /// (the deciding parameters not read yet). `none` with an empty basis when `yaw` is not from
-  /// mocap: the yaw itself is then the heading.
+  /// (the vehicle's calibrated magnetometer), none (no compass, or not calibrated), unknown (the
+  /// deciding parameters not read yet). `none` with an empty basis when `yaw` is not from mocap:
+  /// the yaw itself is then the heading.
   QuantitySource heading{EstimateSource::none, {}};
+  /// Added to the magnetometer's heading (rad, east positive): the vehicle's configured
+  /// declination (COMPASS_DEC, EKF2_MAG_DECL); 0 when not read or no heading is wanted.
+  double declination_rad = 0.0;
   friend bool operator==(const EstimateSources&, const EstimateSources&) = default;
 };
 
@@ -83,13 +92,13 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
                                                const std::optional<FirmwareVersion>& version,
                                                SetupInput input, const ParameterLookup& parameter);
 
-/// The vehicle's yaw is mocap's and it has a heading of its own to check it against (AHRS2):
-/// that heading is asked for and compared.
+/// The vehicle's yaw is mocap's and it has a heading of its own to check it against (its
+/// magnetometer): that heading is asked for and compared.
 [[nodiscard]] bool checks_second_heading(const EstimateSources& sources);
 
 /// The parameters the sources are decided by that the set-up list has no rule for, read with
-/// it: ArduPilot's COMPASS_ENABLE and COMPASS_USE, PX4's SYS_HAS_MAG (the second heading); none
-/// for others.
+/// it: ArduPilot's COMPASS_ENABLE, COMPASS_OFS_X/Y/Z and COMPASS_DEC, PX4's SYS_HAS_MAG and
+/// EKF2_MAG_DECL (the second heading); none for others.
 [[nodiscard]] std::span<const std::string_view> source_parameters(AutopilotFamily autopilot);
 
 /// A PX4 fed over uXRCE-DDS (VehicleLink::px4_dds): its parameters cannot be read there, and
@@ -106,9 +115,10 @@ using ParameterLookup = std::function<std::optional<double>(std::string_view nam
 /// Both, joined with "; " (yaw first); nullopt when both are independent: the sentence the log
 /// and the dashboard's `agreement.reason` give for what the check did not measure. A yaw from
 /// mocap with an independent second heading that was compared (`heading_compared`) is named as
-/// compared with that heading only ("yaw compared with its compass only (AHRS2, DCM with the
-/// compass: COMPASS_USE = 1), 45° allowed: the vehicle's yaw comes from mocap (EK3_SRC1_YAW =
-/// 6)"); one not compared (not arrived) says so; without one the sentence says why there is none.
+/// compared with that heading only ("yaw compared with its compass only (its compass in RAW_IMU:
+/// COMPASS_ENABLE = 1, calibrated), 45° allowed: the vehicle's yaw comes from mocap
+/// (EK3_SRC1_YAW = 6)"); one not compared (not arrived) says so; without one the sentence says why
+/// there is none.
 [[nodiscard]] std::optional<std::string> describe_unchecked(const EstimateSources& sources,
                                                             bool heading_compared = true);
 

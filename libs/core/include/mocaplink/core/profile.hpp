@@ -133,7 +133,7 @@ class MessageSet {
 /// at `rate_hz`, plus HEARTBEAT, a TIMESYNC request and reply and SET_GPS_GLOBAL_ORIGIN at 1 Hz
 /// each, plus the ATTITUDE and LOCAL_POSITION_NED the agreement check asks the vehicle for at
 /// kStreamRateHz (vehicle_streams.hpp; the other direction, which a telemetry radio shares) and
-/// the compass heading it may ask for at that rate too (AHRS2 of ArduPilot profiles, HIGHRES_IMU
+/// the compass heading it may ask for at that rate too (RAW_IMU of ArduPilot profiles, HIGHRES_IMU
 /// of px4, the larger where `profile` does not say; none for px4-gps), every frame at its full
 /// MAVLink 2 size (and signature). Compared with a serial link's baud / 10 (serial_link_warning).
 [[nodiscard]] double link_bytes_per_second(Profile profile, const MessageSet& messages,

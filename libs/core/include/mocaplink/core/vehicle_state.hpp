@@ -46,11 +46,11 @@
 //               not make an agreement, and while the deciding parameter is not known the verdict
 //               stays unknown rather than agree.
 //               A second heading (issue 48): where the vehicle's yaw is mocap's but it has a
-//               heading of its own (ArduPilot's AHRS2 with the compass in use, PX4's
-//               magnetometer in HIGHRES_IMU: sources.heading independent), each ATTITUDE also
-//               compares mocap's yaw with the latest AHRS2 yaw, or the magnetometer's heading
-//               tilt-compensated with that ATTITUDE's roll and pitch, received within
-//               kHeadingFresh (heading offset, deg, compass − mocap); beyond
+//               calibrated magnetometer (ArduPilot's field in RAW_IMU, PX4's in HIGHRES_IMU:
+//               sources.heading independent), each ATTITUDE also compares mocap's yaw with the
+//               latest field's heading, tilt-compensated with that ATTITUDE's roll and pitch
+//               plus sources.declination_rad, received within kHeadingFresh (heading offset,
+//               deg, compass − mocap); beyond
 //               kMaxHeadingOffsetDeg (45°: a compass indoors is 10–30° off, a nose mistake 90°
 //               or 180°) it disagrees like the others, and while such a heading is wanted an
 //               agreement needs it too.
@@ -153,7 +153,7 @@ inline constexpr Duration kAgreementSettle = std::chrono::seconds(15);
 /// A disagreement becomes the verdict once it has lasted this long, every comparison beyond a
 /// threshold: longer than an estimator's reset transient, short enough to be told before take-off.
 inline constexpr Duration kAgreementHold = std::chrono::seconds(3);
-/// A compass heading (AHRS2, HIGHRES_IMU) older than this at an ATTITUDE is not compared (asked
+/// A compass field (RAW_IMU, HIGHRES_IMU) older than this at an ATTITUDE is not compared (asked
 /// at 2 Hz: a second is one lost; a vehicle turned by hand moves some 30° in it, inside 45°).
 inline constexpr Duration kHeadingFresh = std::chrono::seconds(1);
 
@@ -285,8 +285,8 @@ class VehicleState {
 
   /// The Bridge's axis fix for the current disagreement (ignored unless the verdict is disagree).
   void set_axis_fix(AxisFix fix);
-  /// The vehicle's yaw is mocap's and it has a compass heading (AHRS2, HIGHRES_IMU): asked for,
-  /// compared.
+  /// The vehicle's yaw is mocap's and it has a calibrated compass (RAW_IMU, HIGHRES_IMU): asked
+  /// for, compared.
   [[nodiscard]] bool heading_wanted() const;
 
   /// We sent a TIMESYNC request with ts1 = `ts1_ns` (kept to match the response; the latest 8).
@@ -341,9 +341,8 @@ class VehicleState {
   std::optional<double> vehicle_position_offset_m_;
   std::optional<double> vehicle_tilt_offset_deg_;
   std::optional<double> vehicle_heading_offset_deg_;
-  std::optional<double> ahrs2_yaw_rad_;  ///< the vehicle's latest AHRS2 yaw, received at:
-  std::optional<HostTime> ahrs2_received_;
-  std::optional<Eigen::Vector3d> mag_frd_;  ///< its latest HIGHRES_IMU field (gauss), at:
+  /// Its latest magnetometer field (RAW_IMU milligauss, HIGHRES_IMU gauss), received at:
+  std::optional<Eigen::Vector3d> mag_frd_;
   std::optional<HostTime> mag_received_;
   Agreement agreement_;
   VehicleCounters counters_;

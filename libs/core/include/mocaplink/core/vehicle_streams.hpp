@@ -3,7 +3,7 @@
 // estimator's health, which the set-up list shows in words (issue 28): EKF_STATUS_REPORT (193)
 // from ArduPilot, ESTIMATOR_STATUS (230) from PX4, at 1 Hz; the estimator's is never asked of
 // another autopilot. And, of a vehicle whose yaw comes from mocap but which has a compass, its
-// heading: AHRS2 (178, DCM's heading) of ArduPilot, HIGHRES_IMU (105, the magnetometer) of PX4 —
+// magnetometer field: RAW_IMU (27) of ArduPilot, HIGHRES_IMU (105) of PX4 —
 // the one reference for the nose left (estimate_sources.hpp, issue 48), at 2 Hz, asked only
 // while the Bridge says it is wanted (StreamTarget::want_heading).
 // Pure: time is passed in; one per vehicle, owned by the Bridge.
@@ -28,7 +28,8 @@
 //             last attempt → fallback on ArduPilot (autopilot 3), refused on anything else.
 //   accepted  waiting for the message, at most kStreamAnswerTimeout.
 //   fallback  REQUEST_DATA_STREAM (EXTRA1 for ATTITUDE, POSITION for LOCAL_POSITION_NED, EXTRA3
-//             for EKF_STATUS_REPORT and AHRS2 — the group's rate is the one asked last) at the
+//             for EKF_STATUS_REPORT, RAW_SENSORS for RAW_IMU — the group's rate is the one asked
+//             last) at the
 //             message's rate, start_stop 1, sent kDataStreamAttempts
 //             times kCommandRetryPeriod apart (it has no ACK) unless the message arrives; then
 //             waiting kStreamAnswerTimeout.
@@ -73,7 +74,7 @@ enum class VehicleStream : std::uint8_t {
   attitude,            ///< ATTITUDE (30): yaw, for the agreement check
   local_position_ned,  ///< LOCAL_POSITION_NED (32): position, for the agreement check
   estimator,           ///< EKF_STATUS_REPORT (193, ArduPilot) / ESTIMATOR_STATUS (230, PX4)
-  heading,  ///< AHRS2 (178, ArduPilot) / HIGHRES_IMU (105, PX4): its own heading, yaw from mocap
+  heading,  ///< RAW_IMU (27, ArduPilot) / HIGHRES_IMU (105, PX4): its compass, yaw from mocap
 };
 inline constexpr std::size_t kVehicleStreamCount = 4;
 inline constexpr std::array<VehicleStream, kVehicleStreamCount> kVehicleStreams{
@@ -84,14 +85,15 @@ inline constexpr std::array<VehicleStream, 2> kAgreementStreams{VehicleStream::a
                                                                 VehicleStream::local_position_ned};
 /// "ATTITUDE", "LOCAL_POSITION_NED"; the estimator's is "EKF_STATUS_REPORT" on ArduPilot
 /// (`autopilot` 3), "ESTIMATOR_STATUS" on anything else; the heading's "HIGHRES_IMU" on PX4 (12),
-/// "AHRS2" on anything else.
+/// "RAW_IMU" on anything else.
 [[nodiscard]] std::string_view mavlink_name(VehicleStream stream, std::uint8_t autopilot = 0);
-/// 30, 32; the estimator's 193 on ArduPilot, 230 on anything else; the heading's 105 on PX4, 178
+/// 30, 32; the estimator's 193 on ArduPilot, 230 on anything else; the heading's 105 on PX4, 27
 /// on anything else.
 [[nodiscard]] std::uint32_t message_id(VehicleStream stream, std::uint8_t autopilot = 0);
-/// ArduPilot's stream group carrying it (MAV_DATA_STREAM): EXTRA1 = 10, POSITION = 6, EXTRA3 = 12.
+/// ArduPilot's stream group carrying it (MAV_DATA_STREAM): EXTRA1 = 10, POSITION = 6, EXTRA3 = 12,
+/// RAW_SENSORS = 1.
 [[nodiscard]] std::uint8_t data_stream_id(VehicleStream stream);
-/// "EXTRA1", "POSITION", "EXTRA3" (the estimator's and AHRS2).
+/// "EXTRA1", "POSITION", "EXTRA3" (the estimator's), "RAW_SENSORS" (RAW_IMU).
 [[nodiscard]] std::string_view data_stream_name(VehicleStream stream);
 /// Whether it is asked of this autopilot: the estimator's only of ArduPilot (3) and PX4 (12),
 /// the heading's of both (and then only when wanted).
@@ -106,7 +108,7 @@ inline constexpr double kStreamRateHz = 5.0;
 /// 34 bytes/s (EKF_STATUS_REPORT) to 54 bytes/s (ESTIMATOR_STATUS), under 1 % of a 57600-baud
 /// radio. ArduPilot's GCS defaults for EXTRA3 are 1-2 Hz, PX4's for ESTIMATOR_STATUS 0.5-1 Hz.
 inline constexpr double kEstimatorRateHz = 1.0;
-/// 2 Hz for the compass heading (AHRS2, HIGHRES_IMU): a nose 90° off is a constant offset, and
+/// 2 Hz for the compass field (RAW_IMU, HIGHRES_IMU): a nose 90° off is a constant offset, and
 /// two samples a second keep one within kHeadingFresh of every ATTITUDE with one lost; HIGHRES_IMU
 /// is 75 bytes a frame, 150 bytes/s at 2 Hz (2.6 % of a 57600-baud radio; 375 at 5 Hz pushed a
 /// px4 vehicle at 20 Hz over that radio's budget).
@@ -172,8 +174,9 @@ struct StreamTarget {
   bool alive = false;          ///< a heartbeat from the vehicle within kVehicleSilentAfter
   std::uint8_t autopilot = 0;  ///< MAV_AUTOPILOT of that heartbeat (3 ArduPilot: fallback)
   std::uint8_t compid = 1;     ///< the heartbeat's component: the commands' target component
-  /// AHRS2 is wanted: the vehicle's yaw is mocap's and its compass is in use (the agreement's
-  /// sources). While false it is not asked for, and an unanswered request is not repeated.
+  /// The compass is wanted: the vehicle's yaw is mocap's and it has a calibrated compass (the
+  /// agreement's sources). While false it is not asked for, and an unanswered request is not
+  /// repeated.
   bool want_heading = false;
 };
 

@@ -627,6 +627,95 @@ void for_each_field(M& m, F&& f) {
   f(M::kFields[15], m.yaw);
 }
 
+/// RAW_IMU (#27).
+struct RawImu {
+  static constexpr std::uint32_t kId = 27;
+  static constexpr std::string_view kName = "RAW_IMU";
+  static constexpr std::uint8_t kCrcExtra = 144;
+  static constexpr std::uint8_t kBaseLength = 26;
+  static constexpr std::uint8_t kMaxLength = 29;
+  static constexpr std::array<FieldInfo, 12> kFields{{
+      {"time_usec", FieldType::u64, 1, 0, false, "us", ""},
+      {"xacc", FieldType::i16, 1, 8, false, "", ""},
+      {"yacc", FieldType::i16, 1, 10, false, "", ""},
+      {"zacc", FieldType::i16, 1, 12, false, "", ""},
+      {"xgyro", FieldType::i16, 1, 14, false, "", ""},
+      {"ygyro", FieldType::i16, 1, 16, false, "", ""},
+      {"zgyro", FieldType::i16, 1, 18, false, "", ""},
+      {"xmag", FieldType::i16, 1, 20, false, "", ""},
+      {"ymag", FieldType::i16, 1, 22, false, "", ""},
+      {"zmag", FieldType::i16, 1, 24, false, "", ""},
+      {"id", FieldType::u8, 1, 26, true, "", ""},
+      {"temperature", FieldType::i16, 1, 27, true, "cdegC", ""},
+  }};
+
+  std::uint64_t time_usec{};  ///< [us]; wire offset 0
+  std::int16_t xacc{};        ///< wire offset 8
+  std::int16_t yacc{};        ///< wire offset 10
+  std::int16_t zacc{};        ///< wire offset 12
+  std::int16_t xgyro{};       ///< wire offset 14
+  std::int16_t ygyro{};       ///< wire offset 16
+  std::int16_t zgyro{};       ///< wire offset 18
+  std::int16_t xmag{};        ///< wire offset 20
+  std::int16_t ymag{};        ///< wire offset 22
+  std::int16_t zmag{};        ///< wire offset 24
+  std::uint8_t id{};          ///< extension (MAVLink 2 only; 0 when absent); wire offset 26
+  std::int16_t
+      temperature{};  ///< [cdegC]; extension (MAVLink 2 only; 0 when absent); wire offset 27
+
+  /// Writes every field (untruncated) at its wire offset.
+  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
+    detail::store(p, 0, time_usec);
+    detail::store(p, 8, xacc);
+    detail::store(p, 10, yacc);
+    detail::store(p, 12, zacc);
+    detail::store(p, 14, xgyro);
+    detail::store(p, 16, ygyro);
+    detail::store(p, 18, zgyro);
+    detail::store(p, 20, xmag);
+    detail::store(p, 22, ymag);
+    detail::store(p, 24, zmag);
+    detail::store(p, 26, id);
+    detail::store(p, 27, temperature);
+  }
+  /// Reads every field from a full-length (zero-filled) payload.
+  [[nodiscard]] static RawImu unpack(std::span<const std::uint8_t, kMaxLength> p) noexcept {
+    RawImu m;
+    detail::load(p, 0, m.time_usec);
+    detail::load(p, 8, m.xacc);
+    detail::load(p, 10, m.yacc);
+    detail::load(p, 12, m.zacc);
+    detail::load(p, 14, m.xgyro);
+    detail::load(p, 16, m.ygyro);
+    detail::load(p, 18, m.zgyro);
+    detail::load(p, 20, m.xmag);
+    detail::load(p, 22, m.ymag);
+    detail::load(p, 24, m.zmag);
+    detail::load(p, 26, m.id);
+    detail::load(p, 27, m.temperature);
+    return m;
+  }
+  bool operator==(const RawImu&) const = default;
+};
+
+/// Calls f(const FieldInfo&, field&) for each field of a RawImu in wire order.
+template <typename M, typename F>
+requires std::same_as<std::remove_const_t<M>, RawImu>
+void for_each_field(M& m, F&& f) {
+  f(M::kFields[0], m.time_usec);
+  f(M::kFields[1], m.xacc);
+  f(M::kFields[2], m.yacc);
+  f(M::kFields[3], m.zacc);
+  f(M::kFields[4], m.xgyro);
+  f(M::kFields[5], m.ygyro);
+  f(M::kFields[6], m.zgyro);
+  f(M::kFields[7], m.xmag);
+  f(M::kFields[8], m.ymag);
+  f(M::kFields[9], m.zmag);
+  f(M::kFields[10], m.id);
+  f(M::kFields[11], m.temperature);
+}
+
 /// ATTITUDE (#30).
 struct Attitude {
   static constexpr std::uint32_t kId = 30;
@@ -1819,64 +1908,6 @@ void for_each_field(M& m, F&& f) {
   f(M::kFields[11], m.uid2);
 }
 
-/// AHRS2 (#178).
-struct Ahrs2 {
-  static constexpr std::uint32_t kId = 178;
-  static constexpr std::string_view kName = "AHRS2";
-  static constexpr std::uint8_t kCrcExtra = 47;
-  static constexpr std::uint8_t kBaseLength = 24;
-  static constexpr std::uint8_t kMaxLength = 24;
-  static constexpr std::array<FieldInfo, 6> kFields{{
-      {"roll", FieldType::f32, 1, 0, false, "rad", ""},
-      {"pitch", FieldType::f32, 1, 4, false, "rad", ""},
-      {"yaw", FieldType::f32, 1, 8, false, "rad", ""},
-      {"altitude", FieldType::f32, 1, 12, false, "m", ""},
-      {"lat", FieldType::i32, 1, 16, false, "degE7", ""},
-      {"lng", FieldType::i32, 1, 20, false, "degE7", ""},
-  }};
-
-  float roll{};        ///< [rad]; wire offset 0
-  float pitch{};       ///< [rad]; wire offset 4
-  float yaw{};         ///< [rad]; wire offset 8
-  float altitude{};    ///< [m]; wire offset 12
-  std::int32_t lat{};  ///< [degE7]; wire offset 16
-  std::int32_t lng{};  ///< [degE7]; wire offset 20
-
-  /// Writes every field (untruncated) at its wire offset.
-  void pack(std::span<std::uint8_t, kMaxLength> p) const noexcept {
-    detail::store(p, 0, roll);
-    detail::store(p, 4, pitch);
-    detail::store(p, 8, yaw);
-    detail::store(p, 12, altitude);
-    detail::store(p, 16, lat);
-    detail::store(p, 20, lng);
-  }
-  /// Reads every field from a full-length (zero-filled) payload.
-  [[nodiscard]] static Ahrs2 unpack(std::span<const std::uint8_t, kMaxLength> p) noexcept {
-    Ahrs2 m;
-    detail::load(p, 0, m.roll);
-    detail::load(p, 4, m.pitch);
-    detail::load(p, 8, m.yaw);
-    detail::load(p, 12, m.altitude);
-    detail::load(p, 16, m.lat);
-    detail::load(p, 20, m.lng);
-    return m;
-  }
-  bool operator==(const Ahrs2&) const = default;
-};
-
-/// Calls f(const FieldInfo&, field&) for each field of a Ahrs2 in wire order.
-template <typename M, typename F>
-requires std::same_as<std::remove_const_t<M>, Ahrs2>
-void for_each_field(M& m, F&& f) {
-  f(M::kFields[0], m.roll);
-  f(M::kFields[1], m.pitch);
-  f(M::kFields[2], m.yaw);
-  f(M::kFields[3], m.altitude);
-  f(M::kFields[4], m.lat);
-  f(M::kFields[5], m.lng);
-}
-
 /// EKF_STATUS_REPORT (#193).
 struct EkfStatusReport {
   static constexpr std::uint32_t kId = 193;
@@ -2483,10 +2514,10 @@ void for_each_field(M& m, F&& f) {
 /// Every typed message, in message-id order.
 using Message =
     std::variant<Heartbeat, SysStatus, SystemTime, Ping, ParamRequestRead, ParamValue, ParamSet,
-                 GpsRawInt, Attitude, AttitudeQuaternion, LocalPositionNed, GlobalPositionInt,
-                 SetGpsGlobalOrigin, GpsGlobalOrigin, RequestDataStream, CommandLong, CommandAck,
-                 GlobalVisionPositionEstimate, VisionPositionEstimate, VisionSpeedEstimate,
-                 HighresImu, Timesync, HilGps, AttPosMocap, AutopilotVersion, Ahrs2,
+                 GpsRawInt, RawImu, Attitude, AttitudeQuaternion, LocalPositionNed,
+                 GlobalPositionInt, SetGpsGlobalOrigin, GpsGlobalOrigin, RequestDataStream,
+                 CommandLong, CommandAck, GlobalVisionPositionEstimate, VisionPositionEstimate,
+                 VisionSpeedEstimate, HighresImu, Timesync, HilGps, AttPosMocap, AutopilotVersion,
                  EkfStatusReport, EstimatorStatus, GpsInput, HomePosition, ExtendedSysState,
                  Statustext, SetupSigning, Odometry>;
 
