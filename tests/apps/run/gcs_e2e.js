@@ -88,7 +88,9 @@ function scriptedAutopilot(transport, sysid) {
     params: new Map([
       ['EKF2_EV_CTRL', [0, INT32]], ['EKF2_HGT_REF', [1, INT32]], ['EKF2_GPS_CTRL', [0, INT32]],
       ['EKF2_MAG_TYPE', [5, INT32]], ['EKF2_EV_DELAY', [0, REAL32]],
-      ['SYS_HAS_MAG', [1, INT32]],  // read for the agreement's second heading ['MAV_SYS_ID', [sysid, INT32]],
+      // Read for the agreement's second heading.
+      ['SYS_HAS_MAG', [1, INT32]], ['EKF2_MAG_DECL', [0, REAL32]],
+      ['MAV_SYS_ID', [sysid, INT32]],
       ['COM_ARM_WO_GPS', [1, INT32]],
     ]),
   };
