@@ -69,9 +69,12 @@ function renderStation(station) {
   const rows = station.bodies.map((b) => {
     const tr = document.createElement('tr');
     tr.dataset.body = b.name;
-    if (b.state === 'lost') tr.className = 'lost';
+    if (b.state === 'lost' || b.mirrored) tr.className = 'lost';
     const p = b.p_m || [null, null, null];
-    const cells = [b.name, b.state === 'lost' ? 'LOST' : b.state, num(p[0], 3), num(p[1], 3), num(p[2], 3), int(b.rejected)];
+    // A mirrored rotation (left-handed matrix) is a set-up mistake no axis setting fixes: say so.
+    const shown = b.mirrored ? 'MIRRORED' : b.state === 'lost' ? 'LOST' : b.state;
+    if (b.mirrored) tr.title = 'the source sends a left-handed rotation (determinant -1): not a pose; no axis setting can fix it — check the handedness of the mocap system\'s frame';
+    const cells = [b.name, shown, num(p[0], 3), num(p[1], 3), num(p[2], 3), int(b.rejected)];
     cells.forEach((text, i) => {
       const td = document.createElement('td');
       if (i === 0) {

@@ -164,6 +164,7 @@ nlohmann::json to_json(const std::string& url, SourceState state, const core::St
     bodies.push_back({
         {"name", b.name},
         {"tracked", b.tracked},
+        {"mirrored", b.mirrored},
         {"p_m", b.ever_tracked ? nlohmann::json{b.p_world_m.x(), b.p_world_m.y(), b.p_world_m.z()}
                                : nlohmann::json(nullptr)},
         {"q_wxyz",
@@ -218,6 +219,14 @@ std::string to_text(const std::string& url, SourceState state, const std::string
                                 "{:>7.4f}\n",
                                 p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z())
                           : std::string("   (never tracked)\n");
+  }
+  for (const auto& b : s.bodies) {
+    if (b.mirrored) {
+      out += fmt::format(
+          "{}: its rotation is mirrored (a left-handed matrix, determinant -1): not a pose; no "
+          "axis setting can fix it: check the handedness of the mocap system's frame\n",
+          b.name);
+    }
   }
   return out;
 }

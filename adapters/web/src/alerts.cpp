@@ -19,9 +19,15 @@ void AlertMonitor::annotate(StatusView& status, double now_s) {
             (station.error.empty() ? std::string() : ": " + station.error));
   }
   for (const BodyView& body : station.bodies) {
-    if (body.state != core::TrackingState::lost) continue;
     const bool followed = std::any_of(status.vehicles.begin(), status.vehicles.end(),
                                       [&](const VehicleView& v) { return v.body == body.name; });
+    if (body.mirrored) {
+      add(followed ? AlertLevel::error : AlertLevel::warning, "body_mirrored", body.name,
+          body.name +
+              "'s rotation from the source is mirrored (left-handed): no axis setting can fix "
+              "it; check the handedness of the mocap system's frame");
+    }
+    if (body.state != core::TrackingState::lost) continue;
     add(followed ? AlertLevel::error : AlertLevel::warning, "body_lost", body.name,
         body.name + " is lost" + (followed ? ": its vehicle gets no pose" : ""));
   }

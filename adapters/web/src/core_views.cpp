@@ -6,6 +6,7 @@ BodyView make_body_view(const core::StationBody& body, const core::BodyEstimate*
   BodyView view;
   view.name = body.name;
   view.tracked = body.tracked;
+  view.mirrored = body.mirrored;
   if (body.ever_tracked) {
     view.p_m = std::array<double, 3>{body.p_world_m.x(), body.p_world_m.y(), body.p_world_m.z()};
     const Eigen::Quaterniond& q = body.q_world_body;

@@ -64,6 +64,7 @@ void to_json(nlohmann::json& j, const BodyView& body) {
   j = nlohmann::json{{"name", body.name},
                      {"state", text(core::to_string(body.state))},
                      {"tracked", body.tracked},
+                     {"mirrored", body.mirrored},
                      {"p_m", optional_json(body.p_m)},
                      {"q_wxyz", optional_json(body.q_wxyz)},
                      {"frames_tracked", body.frames_tracked},

@@ -79,6 +79,8 @@ std::string_view to_string(BridgeEventKind kind) {
       return "body_lost";
     case BridgeEventKind::body_reset:
       return "body_reset";
+    case BridgeEventKind::body_mirrored:
+      return "body_mirrored";
     case BridgeEventKind::vehicle_link:
       return "vehicle_link";
     case BridgeEventKind::origin_state:
@@ -319,6 +321,7 @@ void Bridge::track_body(Body& body) {
       body.frame_index_hint = static_cast<std::size_t>(sample - frame.bodies.begin());
     }
   }
+  body.mirrored = sample != frame.bodies.end() && sample->mirrored;
   if (sample != frame.bodies.end()) {
     (void)body.tracker.on_sample(frame.capture_time, *sample);
   } else {
@@ -336,6 +339,15 @@ void Bridge::body_events(BridgeOutput& out) {
       out.events.push_back({BridgeEventKind::body_reset, capture, std::nullopt, body.name,
                             "pose jumped, reset_counter " + std::to_string(e.reset_counter)});
     }
+    if (body.mirrored && !body.named_mirrored) {
+      out.events.push_back(
+          {BridgeEventKind::body_mirrored, capture, std::nullopt, body.name,
+           "the source's rotation is mirrored (a left-handed matrix, determinant -1): not a pose, "
+           "so none is sent; no up, north, body_forward or body_up setting can fix it: check the "
+           "handedness of the mocap system's or its streaming tool's frame"});
+    }
+    body.named_mirrored =
+        body.mirrored || (body.named_mirrored && e.state != TrackingState::tracking);
     if (e.state != body.last_state) {
       const bool lost = e.state == TrackingState::lost;
       if (lost || e.state == TrackingState::tracking) {

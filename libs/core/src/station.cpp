@@ -31,7 +31,10 @@ void Station::count_frame_number(std::uint64_t n, std::uint32_t step) {
 }
 
 void Station::update_bodies(const MocapFrame& frame, HostTime received) {
-  for (auto& body : totals_.bodies) body.tracked = false;  // absent from this frame: untracked
+  for (auto& body : totals_.bodies) {  // absent from this frame: untracked
+    body.tracked = false;
+    body.mirrored = false;
+  }
   for (const auto& sample : frame.bodies) {
     auto it = body_index_.find(sample.name);
     if (it == body_index_.end()) {
@@ -46,6 +49,7 @@ void Station::update_bodies(const MocapFrame& frame, HostTime received) {
     }
     StationBody& body = totals_.bodies[it->second];
     body.tracked = sample.tracked;
+    body.mirrored = !sample.tracked && sample.mirrored;
     if (!sample.tracked) continue;
     body.ever_tracked = true;
     body.p_world_m = sample.p_world_m;

@@ -28,6 +28,15 @@ bool all_nan(const Body6d& b, bool matrix) {
                  : std::all_of(b.euler_deg.begin(), b.euler_deg.end(), nan));
 }
 
+/// The matrix column by column on the wire → the row-major layout the shared rotation check reads.
+std::array<double, 9> row_major(const Body6d& b) {
+  std::array<double, 9> out{};
+  for (std::size_t row = 0; row < 3; ++row) {
+    for (std::size_t col = 0; col < 3; ++col) out[row * 3 + col] = b.rotation[col * 3 + row];
+  }
+  return out;
+}
+
 std::optional<Eigen::Quaterniond> orientation(const Body6d& b, bool matrix) {
   if (!matrix) {
     const std::array<double, 3> deg{b.euler_deg[0], b.euler_deg[1], b.euler_deg[2]};
@@ -36,12 +45,7 @@ std::optional<Eigen::Quaterniond> orientation(const Body6d& b, bool matrix) {
     }
     return quaternion_from_euler(deg);
   }
-  // Column by column on the wire → the row-major layout the shared rotation check reads.
-  std::array<double, 9> row_major{};
-  for (std::size_t row = 0; row < 3; ++row) {
-    for (std::size_t col = 0; col < 3; ++col) row_major[row * 3 + col] = b.rotation[col * 3 + row];
-  }
-  return vicon::quaternion_from_rotation(row_major);
+  return vicon::quaternion_from_rotation(row_major(b));
 }
 
 }  // namespace
@@ -79,6 +83,7 @@ Result<MappedFrame> to_mocap_frame(const DataPacket& data, Component preferred,
         body.q_world_body = *q;
       } else {
         ++out.invalid_poses;
+        body.mirrored = matrix && vicon::is_mirrored_rotation(row_major(b));
       }
     }
     f.bodies.push_back(std::move(body));

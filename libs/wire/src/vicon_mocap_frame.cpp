@@ -49,6 +49,7 @@ MappedFrame to_mocap_frame(const DecodedFrame& decoded) {
         body.q_world_body = decoded.y_up ? y_up_to_z_up(*q) : *q;
       } else {
         ++out.invalid_poses;
+        body.mirrored = is_mirrored_rotation(s.rotation);
       }
     }
     f.bodies.push_back(std::move(body));

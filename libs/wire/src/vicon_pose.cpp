@@ -13,11 +13,14 @@ Eigen::Matrix3d to_matrix(const std::array<double, 9>& r) {
   return m;
 }
 
-bool is_rotation(const Eigen::Matrix3d& m) {
+bool is_orthonormal(const Eigen::Matrix3d& m) {
   if (!m.allFinite()) return false;
   const Eigen::Matrix3d err = m.transpose() * m - Eigen::Matrix3d::Identity();
-  if (err.cwiseAbs().maxCoeff() > kRotationTolerance) return false;
-  return std::abs(m.determinant() - 1.0) <= kRotationTolerance;
+  return err.cwiseAbs().maxCoeff() <= kRotationTolerance;
+}
+
+bool is_rotation(const Eigen::Matrix3d& m) {
+  return is_orthonormal(m) && std::abs(m.determinant() - 1.0) <= kRotationTolerance;
 }
 
 // The Y-up → Z-up change of basis of §9.4.
@@ -27,6 +30,11 @@ const Eigen::Matrix3d& y_up_basis() {
 }
 
 }  // namespace
+
+bool is_mirrored_rotation(const std::array<double, 9>& r) {
+  const Eigen::Matrix3d m = to_matrix(r);
+  return is_orthonormal(m) && std::abs(m.determinant() + 1.0) <= kRotationTolerance;
+}
 
 std::optional<Eigen::Quaterniond> quaternion_from_rotation(const std::array<double, 9>& r) {
   const Eigen::Matrix3d m = to_matrix(r);

@@ -64,6 +64,19 @@ TEST(Alerts, EachConditionRaisesItsAlert) {
   EXPECT_EQ(s.alerts[1].message, "No frames from vicon://10.0.0.3: connection refused");
 }
 
+TEST(Alerts, AMirroredBodyIsAnErrorWhenAVehicleFollowsIt) {
+  AlertMonitor monitor;
+  StatusView s = healthy();
+  s.station.bodies[0].mirrored = true;  // followed by quad1
+  s.station.bodies[1].mirrored = true;
+  monitor.annotate(s, 0.0);
+  EXPECT_EQ(kinds(s),
+            (std::vector<std::string>{"body_mirrored/Quad1/error", "body_mirrored/Wand/warning"}));
+  EXPECT_EQ(s.alerts[0].message,
+            "Quad1's rotation from the source is mirrored (left-handed): no axis setting can fix "
+            "it; check the handedness of the mocap system's frame");
+}
+
 TEST(Alerts, DropsRisingLooksBackOverTheWindow) {
   AlertMonitor monitor(AlertRules{.drops_window_s = 10.0});
   auto at = [&](double t, std::uint64_t dropped) {

@@ -78,6 +78,7 @@ TEST_F(ApiTest, StatusHasTheDocumentedShapeAndTheBackendsValues) {
   EXPECT_EQ(body1["name"], "Body1");
   EXPECT_EQ(body1["state"], "tracking");
   EXPECT_EQ(body1["tracked"], true);
+  EXPECT_EQ(body1["mirrored"], false);
   ASSERT_EQ(body1["p_m"].size(), 3U);
   EXPECT_NEAR(body1["p_m"][0].get<double>(), 0.0, 1e-12);
   EXPECT_NEAR(body1["p_m"][1].get<double>(), 1.5, 1e-12);

@@ -54,6 +54,14 @@ TEST(CoreViews, StationFiguresAndBodiesCarryOver) {
   EXPECT_FALSE(wand.q_wxyz.has_value());
 }
 
+TEST(CoreViews, AMirroredBodyIsShownAsSuch) {
+  core::StationBody body;
+  body.name = "B";
+  EXPECT_FALSE(make_body_view(body, nullptr).mirrored);
+  body.mirrored = true;
+  EXPECT_TRUE(make_body_view(body, nullptr).mirrored);
+}
+
 TEST(CoreViews, WithoutATrackerAOnceTrackedBodyIsLost) {
   core::StationBody body;
   body.name = "B";

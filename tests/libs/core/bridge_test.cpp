@@ -167,6 +167,42 @@ TEST(BridgeFrames, PosesInNedWithCaptureTimestamps) {
   EXPECT_NEAR(odo[0].second.z, -3.0F, 1e-5F);
 }
 
+TEST(BridgeFrames, AMirroredRotationIsNamedOnceAsNoAxisSettingsMistake) {
+  // A source sending a left-handed matrix (wire: BodySample::mirrored): no pose is sent, and the
+  // log says why once — not again while it lasts, again after the body was tracked in between.
+  Bridge bridge = make_bridge(two_vehicles());
+  const auto mirrored_frame = [](std::uint64_t n) {
+    MocapFrame f = frame_at(n, false, true);
+    f.bodies[0].mirrored = true;
+    return f;
+  };
+  std::vector<BridgeEvent> named;
+  std::size_t odometry = 0;
+  const auto run = [&](std::uint64_t from, std::uint64_t to, bool mirrored) {
+    for (std::uint64_t n = from; n <= to; ++n) {
+      const BridgeOutput out =
+          bridge.on_frame(mirrored ? mirrored_frame(n) : frame_at(n, true, true), received_at(n));
+      for (const auto& [v, m] : of_type<mavlink::Odometry>(out)) odometry += v == 0 ? 1 : 0;
+      for (const BridgeEvent& e : out.events) {
+        if (e.kind == BridgeEventKind::body_mirrored) named.push_back(e);
+      }
+    }
+  };
+  run(1, 200, true);
+  EXPECT_EQ(odometry, 0U);
+  ASSERT_EQ(named.size(), 1U);
+  EXPECT_EQ(named[0].subject, "Quad");
+  EXPECT_EQ(named[0].text,
+            "the source's rotation is mirrored (a left-handed matrix, determinant -1): not a pose, "
+            "so none is sent; no up, north, body_forward or body_up setting can fix it: check "
+            "the handedness of the mocap system's or its streaming tool's frame");
+  EXPECT_EQ(to_string(BridgeEventKind::body_mirrored), "body_mirrored");
+  run(201, 300, false);  // the right frame: tracked, poses sent
+  EXPECT_GT(odometry, 0U);
+  run(301, 310, true);  // mirrored again: named again
+  EXPECT_EQ(named.size(), 2U);
+}
+
 TEST(BridgeFrames, LostBodyStopsPosesAndGpsReportsNoFix) {
   BridgeConfig c = two_vehicles();
   c.vehicles[0].profile = Profile::custom;  // ODOMETRY + GPS_INPUT on the same body

@@ -150,6 +150,27 @@ TEST(Station, NominalRateComesFromTheSource) {
   EXPECT_EQ(station.snapshot(host_ms(0)).nominal_rate_hz, 250.0);
 }
 
+TEST(Station, AMirroredBodyIsSaidSoUntilItsNextFrameWithout) {
+  Station station;
+  MocapFrame f1 = make_frame(1);
+  BodySample mirrored = body("A", false);
+  mirrored.mirrored = true;
+  f1.bodies = {mirrored, body("B", true)};
+  station.on_frame(f1, host_ms(0));
+  auto s = station.snapshot(host_ms(0));
+  EXPECT_TRUE(s.bodies[0].mirrored);
+  EXPECT_FALSE(s.bodies[0].tracked);
+  EXPECT_FALSE(s.bodies[1].mirrored);
+  MocapFrame f2 = make_frame(2);
+  f2.bodies = {body("B", true)};  // A absent: untracked, no longer mirrored either
+  station.on_frame(f2, host_ms(5));
+  EXPECT_FALSE(station.snapshot(host_ms(5)).bodies[0].mirrored);
+  MocapFrame f3 = make_frame(3);
+  f3.bodies = {body("A", true)};
+  station.on_frame(f3, host_ms(10));
+  EXPECT_FALSE(station.snapshot(host_ms(10)).bodies[0].mirrored);
+}
+
 TEST(Station, KeepsEveryBodyWithItsTrackingStateAndLastTrackedPose) {
   Station station;
   MocapFrame f1 = make_frame(1);

@@ -119,9 +119,35 @@ TEST(QtmFrame, NotARotationIsInvalidAndBodyCountMustMatch) {
   const auto mapped = to_mocap_frame(d, Component::six_d, named({"B"}), {});
   ASSERT_TRUE(mapped);
   EXPECT_FALSE(mapped.value().frame.bodies[0].tracked);
+  EXPECT_FALSE(mapped.value().frame.bodies[0].mirrored);  // not orthonormal: no reflection either
   EXPECT_EQ(mapped.value().invalid_poses, 1u);
   EXPECT_FALSE(to_mocap_frame(d, Component::six_d, named({"A", "B"}), {}));
   EXPECT_FALSE(to_mocap_frame(DataPacket{}, Component::six_d, {}, {}));
+}
+
+TEST(QtmFrame, AReflectionMatrixIsNamedMirrored) {
+  // 90° about +z, then y flipped: columns (0, 1, 0), (1, 0, 0), (0, 0, 1) — orthonormal, det −1.
+  DataPacket d;
+  SixDof six;
+  Body6d b;
+  b.position_mm = {10, 20, 30};
+  b.rotation = {0, 1, 0, 1, 0, 0, 0, 0, 1};
+  six.bodies = {b};
+  d.six_dof = {six};
+  const auto mapped = to_mocap_frame(d, Component::six_d, named({"B"}), {});
+  ASSERT_TRUE(mapped);
+  EXPECT_FALSE(mapped.value().frame.bodies[0].tracked);
+  EXPECT_TRUE(mapped.value().frame.bodies[0].mirrored);
+  EXPECT_EQ(mapped.value().invalid_poses, 1u);
+  // Euler angles are always a rotation: the same body as angles is tracked, never mirrored.
+  b.euler_deg = {0, 0, 90};
+  six.type = Component::six_d_euler;
+  six.bodies = {b};
+  d.six_dof = {six};
+  const auto euler = to_mocap_frame(d, Component::six_d_euler, named({"B"}), {});
+  ASSERT_TRUE(euler);
+  EXPECT_TRUE(euler.value().frame.bodies[0].tracked);
+  EXPECT_FALSE(euler.value().frame.bodies[0].mirrored);
 }
 
 TEST(QtmFrame, EulerIsQualisysStandardRollPitchYawAboutRotatedAxes) {

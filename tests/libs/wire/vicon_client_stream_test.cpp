@@ -7,6 +7,7 @@
 #include "mocaplink/wire/vicon_client_stream.hpp"
 #include "mocaplink/wire/vicon_mocap_frame.hpp"
 #include "mocaplink/wire/vicon_packet.hpp"
+#include "mocaplink/wire/vicon_pose.hpp"
 #include "vicon_test_bytes.hpp"
 
 namespace mocaplink::wire::vicon {
@@ -249,7 +250,36 @@ TEST(ViconMocapFrame, BadRotationIsUntrackedAndCounted) {
   f.subjects.push_back(s);
   const MappedFrame m = to_mocap_frame(f);
   EXPECT_EQ(m.invalid_poses, 3u);
-  for (const auto& b : m.frame.bodies) EXPECT_FALSE(b.tracked);
+  for (const auto& b : m.frame.bodies) {
+    EXPECT_FALSE(b.tracked);
+    EXPECT_FALSE(b.mirrored);  // none of them orthonormal
+  }
+}
+
+TEST(ViconMocapFrame, AReflectionIsUntrackedAndNamedMirrored) {
+  // An orthonormal matrix with det −1 (z flipped, and the same after a 90° turn about z): a
+  // left-handed frame, not a pose; a float-rounded proper rotation stays a pose.
+  DecodedFrame f;
+  SubjectSample s;
+  s.name = "B";
+  s.occluded = false;
+  s.rotation = {1, 0, 0, 0, 1, 0, 0, 0, -1};
+  f.subjects.push_back(s);
+  s.rotation = {0, -1, 0, 1, 0, 0, 0, 0, -1};
+  f.subjects.push_back(s);
+  const float c = static_cast<float>(std::sqrt(0.5));
+  s.rotation = {c, -c, 0, c, c, 0, 0, 0, 1};
+  f.subjects.push_back(s);
+  const MappedFrame m = to_mocap_frame(f);
+  EXPECT_EQ(m.invalid_poses, 2u);
+  EXPECT_TRUE(m.frame.bodies[0].mirrored);
+  EXPECT_TRUE(m.frame.bodies[1].mirrored);
+  EXPECT_FALSE(m.frame.bodies[0].tracked);
+  EXPECT_TRUE(m.frame.bodies[2].tracked);
+  EXPECT_FALSE(m.frame.bodies[2].mirrored);
+  EXPECT_TRUE(is_mirrored_rotation({-1, 0, 0, 0, 1, 0, 0, 0, 1}));
+  EXPECT_FALSE(is_mirrored_rotation({1, 0, 0, 0, 1, 0, 0, 0, 1}));
+  EXPECT_FALSE(is_mirrored_rotation({-2, 0, 0, 0, 1, 0, 0, 0, 1}));
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 //   kind                   level    when
 //   source_disconnected    error    the Station is not connected to its source
 //   body_lost              warning  a body is LOST (error when a vehicle follows it)
+//   body_mirrored          warning  a body's rotation from the source is a reflection (a
+//                                   left-handed matrix; error when a vehicle follows it)
 //   link_down              error    a vehicle's link cannot send
 //   vehicle_silent         warning  nothing heard from a vehicle (its link state is silent)
 //   origin_not_confirmed   warning  still sending SET_GPS_GLOBAL_ORIGIN, not confirmed yet

@@ -27,6 +27,9 @@ struct BodyView {
   /// unseen / tracking / lost (core Tracker; LOST after loss_timeout_ms without a valid sample).
   core::TrackingState state = core::TrackingState::unseen;
   bool tracked = false;  ///< tracked in the latest mocap frame
+  /// Untracked in the latest frame because the source's rotation was a reflection (a left-handed
+  /// matrix): a mirrored frame no axis setting can fix (core StationBody::mirrored).
+  bool mirrored = false;
   /// Last tracked position in the source's world frame (m), as `mocaplink bodies` prints it;
   /// null until the body was tracked once.
   std::optional<std::array<double, 3>> p_m{};
@@ -287,9 +290,9 @@ enum class AlertLevel { warning, error };
 /// A condition the operator should look at (see alerts.hpp for the rules).
 struct Alert {
   AlertLevel level = AlertLevel::warning;
-  std::string kind{};     ///< body_lost | vehicle_silent | link_down | origin_not_confirmed |
-                          ///< origin_conflict | agreement_failing | drops_rising |
-                          ///< source_disconnected | (daemon's own)
+  /// body_lost | body_mirrored | vehicle_silent | link_down | origin_not_confirmed |
+  /// origin_conflict | agreement_failing | drops_rising | source_disconnected | (daemon's own)
+  std::string kind{};
   std::string subject{};  ///< the body or vehicle name, or "station"
   std::string message{};  ///< one readable sentence
 };

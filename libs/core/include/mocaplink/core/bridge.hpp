@@ -157,9 +157,12 @@ enum class BridgeEventKind : std::uint8_t {
   body_tracking,  ///< a body (re)gained tracking (text: after how long / reset)
   body_lost,      ///< a body went LOST
   body_reset,     ///< a body's pose jumped (reset_counter incremented)
-  vehicle_link,   ///< a vehicle's heartbeat state changed (alive / silent)
-  origin_state,   ///< a vehicle's origin state changed (confirmed / conflict / sending)
-  agreement,      ///< a vehicle's agreement verdict changed
+  /// a body's rotation from the source is a reflection (BodySample::mirrored): named once when
+  /// it starts, as a mistake no axis setting can fix (issue 48)
+  body_mirrored,
+  vehicle_link,  ///< a vehicle's heartbeat state changed (alive / silent)
+  origin_state,  ///< a vehicle's origin state changed (confirmed / conflict / sending)
+  agreement,     ///< a vehicle's agreement verdict changed
   /// what was asked of a vehicle for the agreement check and the outcome (vehicle_streams.hpp):
   /// a few per vehicle boot, never one per retransmission, so the log keeps every one
   vehicle_streams,
@@ -342,6 +345,8 @@ class Bridge {
     std::size_t frame_index_hint = 0;
     std::uint64_t tracked_frame = 0;  ///< the last frame_number_ its tracker saw
     bool exported = false;            ///< in published_bodies() (BridgeConfig::published)
+    bool mirrored = false;            ///< its sample in the latest frame was mirrored
+    bool named_mirrored = false;      ///< body_mirrored given for the current stretch
   };
   struct Vehicle {
     VehicleSpec spec;

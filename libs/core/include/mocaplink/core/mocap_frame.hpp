@@ -24,6 +24,9 @@ struct BodySample {
   /// Rotation body → source world frame, Hamilton. Eigen stores x,y,z,w internally but constructs
   /// and prints w first: Quaterniond(w, x, y, z).
   Eigen::Quaterniond q_world_body = Eigen::Quaterniond::Identity();
+  /// Untracked because the source's rotation was a reflection (a left-handed matrix, det −1):
+  /// a mirrored frame, which no axis setting can fix (Vicon DataStream and QTM send matrices).
+  bool mirrored = false;
 };
 
 /// A whole frame. `frame_number` is the source's own counter (gaps = dropped frames, see

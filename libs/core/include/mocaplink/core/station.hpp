@@ -55,7 +55,9 @@ struct StationConfig {
 /// One body as the Station last saw it.
 struct StationBody {
   std::string name;
-  bool tracked = false;                                 ///< tracked in the latest frame
+  bool tracked = false;  ///< tracked in the latest frame
+  /// Untracked in the latest frame because its rotation was a reflection (BodySample::mirrored).
+  bool mirrored = false;
   bool ever_tracked = false;                            ///< false: the pose below is meaningless
   Eigen::Vector3d p_world_m = Eigen::Vector3d::Zero();  ///< last tracked position, source world, m
   Eigen::Quaterniond q_world_body = Eigen::Quaterniond::Identity();  ///< last tracked attitude

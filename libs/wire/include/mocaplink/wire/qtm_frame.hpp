@@ -29,7 +29,9 @@ namespace mocaplink::wire::qtm {
 
 struct MappedFrame {
   core::MocapFrame frame;
-  std::size_t invalid_poses = 0;  ///< bodies neither all-NaN nor a valid pose
+  /// Bodies neither all-NaN nor a valid pose (a reflection matrix, det −1, is also marked
+  /// BodySample::mirrored).
+  std::size_t invalid_poses = 0;
 };
 
 /// Maps the `preferred` component of `data` (else its first 6DOF component) with `bodies` as the

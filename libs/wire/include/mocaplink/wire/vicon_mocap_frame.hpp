@@ -14,7 +14,8 @@ namespace mocaplink::wire::vicon {
 struct MappedFrame {
   core::MocapFrame frame;
   /// Tracked segments whose rotation was not a rotation matrix (non-finite, not orthonormal) or
-  /// whose translation was not finite: reported as untracked and counted here.
+  /// whose translation was not finite: reported as untracked and counted here (a reflection,
+  /// det −1, is also marked BodySample::mirrored).
   std::size_t invalid_poses = 0;
 };
 

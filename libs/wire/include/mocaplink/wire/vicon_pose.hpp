@@ -21,6 +21,10 @@ inline constexpr double kRotationTolerance = 1e-3;
 [[nodiscard]] std::optional<Eigen::Quaterniond> quaternion_from_rotation(
     const std::array<double, 9>& r_row_major);
 
+/// Whether R is orthonormal within kRotationTolerance but a reflection (det R = −1): a mirrored,
+/// left-handed frame — no pose, and no axis setting (a proper rotation) makes one of it.
+[[nodiscard]] bool is_mirrored_rotation(const std::array<double, 9>& r_row_major);
+
 /// Row-major rotation matrix of a (normalised) quaternion, for encoding.
 [[nodiscard]] std::array<double, 9> rotation_from_quaternion(const Eigen::Quaterniond& q);
 
