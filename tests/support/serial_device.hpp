@@ -12,13 +12,13 @@ namespace mocaplink::testing_support {
 inline const std::string kSerialDevice = "COM3";
 inline const std::string kSerialUrlPrefix = "serial://COM3";
 inline const std::string kLinkForms =
-    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "udp://HOST:PORT[?bind=ADDR:PORT], udpin://ADDR:PORT, tcp://HOST:PORT, tcpin://ADDR:PORT "
     "serial://COMn?baud=N or ros2://[NAMESPACE]";
 #else
 inline const std::string kSerialDevice = "/dev/ttyUSB0";
 inline const std::string kSerialUrlPrefix = "serial:///dev/ttyUSB0";
 inline const std::string kLinkForms =
-    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "udp://HOST:PORT[?bind=ADDR:PORT], udpin://ADDR:PORT, tcp://HOST:PORT, tcpin://ADDR:PORT "
     "serial:///dev/DEVICE?baud=N or ros2://[NAMESPACE]";
 #endif
 

@@ -17,13 +17,13 @@ constexpr std::array<std::string_view, 6> kSchemes = {"udp",   "udpin",  "tcp",
 // Serial devices are named the platform's way: a COM port on Windows, a device path on Linux.
 #ifdef _WIN32
 constexpr std::string_view kForms =
-    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "udp://HOST:PORT[?bind=ADDR:PORT], udpin://ADDR:PORT, tcp://HOST:PORT, tcpin://ADDR:PORT "
     "serial://COMn?baud=N or ros2://[NAMESPACE]";
 constexpr std::string_view kSerialRule = "serial device must be a COM port name, as in ";
 constexpr std::string_view kSerialExample = "serial://COM3?baud=921600";
 #else
 constexpr std::string_view kForms =
-    "udp://HOST:PORT[?bind=[ADDR]:PORT], udpin://[ADDR]:PORT, tcp://HOST:PORT, tcpin://[ADDR]:PORT "
+    "udp://HOST:PORT[?bind=ADDR:PORT], udpin://ADDR:PORT, tcp://HOST:PORT, tcpin://ADDR:PORT "
     "serial:///dev/DEVICE?baud=N or ros2://[NAMESPACE]";
 constexpr std::string_view kSerialRule = "serial device must be an absolute path, as in ";
 constexpr std::string_view kSerialExample = "serial:///dev/ttyUSB0?baud=921600";
@@ -65,8 +65,8 @@ std::string check_local_address(const HostPort& address, std::string_view what) 
          "interface (as in :" + std::to_string(address.port) + "), got " + detail::quoted(host);
 }
 
-/// udp://HOST:PORT[?bind=[ADDR]:PORT] and tcp://HOST:PORT: the vehicle's address.
-/// udpin://[ADDR]:PORT and tcpin://[ADDR]:PORT: the local address to listen on (empty: all).
+/// udp://HOST:PORT[?bind=ADDR:PORT] and tcp://HOST:PORT: the vehicle's address.
+/// udpin://ADDR:PORT and tcpin://ADDR:PORT: the local address to listen on (:PORT: all).
 Result parse_network(LinkKind kind, const UrlParts& parts) {
   const std::string scheme = std::string(to_string(kind)) + "://";
   constexpr std::array<std::string_view, 1> kUdpKeys = {"bind"};
@@ -78,19 +78,21 @@ Result parse_network(LinkKind kind, const UrlParts& parts) {
   const bool listening = kind == LinkKind::udpin || kind == LinkKind::tcpin;
   if (parts.body.find('/') != std::string_view::npos) {
     return Result::failure(
-        scheme + (listening ? " takes [ADDR]:PORT only, got " : " takes HOST:PORT only, got ") +
+        scheme +
+        (listening ? " takes ADDR:PORT or :PORT only, got " : " takes HOST:PORT only, got ") +
         detail::quoted(parts.body));
   }
   HostPortRules rules;
   rules.host_optional = listening;
   if (listening && is_port_alone(parts.body)) {
-    return Result::failure(scheme + " listens on [ADDR]:PORT, got " + detail::quoted(parts.body) +
+    return Result::failure(scheme + " listens on ADDR:PORT or :PORT, got " +
+                           detail::quoted(parts.body) +
                            " (a port alone is written :" + std::string(parts.body) + ")");
   }
   auto address = parse_host_port(parts.body, rules);
   if (!address) {
     return Result::failure(listening ? scheme +
-                                           " listens on [ADDR]:PORT (ADDR may be left out "
+                                           " listens on ADDR:PORT (ADDR may be left out "
                                            "for every interface): " +
                                            address.error()
                                      : address.error());
@@ -110,14 +112,14 @@ Result parse_network(LinkKind kind, const UrlParts& parts) {
     HostPortRules bind_rules;
     bind_rules.host_optional = true;
     if (is_port_alone(value)) {
-      return Result::failure("bind must be [ADDR]:PORT, the local address to send from, got " +
-                             detail::quoted(value) +
-                             " (a port alone is written :" + std::string(value) + ")");
+      return Result::failure(
+          "bind must be ADDR:PORT or :PORT, the local address to send from, got " +
+          detail::quoted(value) + " (a port alone is written :" + std::string(value) + ")");
     }
     auto bind = parse_host_port(value, bind_rules);
     if (!bind) {
       return Result::failure(
-          "bind must be [ADDR]:PORT, the local address to send from (ADDR may "
+          "bind must be ADDR:PORT, the local address to send from (ADDR may "
           "be left out for every interface, as in bind=:14540): " +
           bind.error());
     }

@@ -96,17 +96,18 @@ TEST(LinkUrl, RejectsBadEndpointForms) {
             "bind's ADDR must be an IP address of this machine, or left out for every interface "
             "(as in :2), got \"localhost\"");
   EXPECT_EQ(error("udp://h:1?bind=:0"),
-            "bind must be [ADDR]:PORT, the local address to send from (ADDR may be left out for "
+            "bind must be ADDR:PORT, the local address to send from (ADDR may be left out for "
             "every interface, as in bind=:14540): port must be 1..65535, got \"0\"");
   EXPECT_EQ(error("udp://h:1?bind=14540"),
-            "bind must be [ADDR]:PORT, the local address to send from, got \"14540\" (a port "
-            "alone is written :14540)");
+            "bind must be ADDR:PORT or :PORT, the local address to send from, got \"14540\" (a "
+            "port alone is written :14540)");
   EXPECT_EQ(error("udpin://14540"),
-            "udpin:// listens on [ADDR]:PORT, got \"14540\" (a port alone is written :14540)");
+            "udpin:// listens on ADDR:PORT or :PORT, got \"14540\" (a port alone is written "
+            ":14540)");
   EXPECT_EQ(error("udpin://h:"),
-            "udpin:// listens on [ADDR]:PORT (ADDR may be left out for every interface): " +
+            "udpin:// listens on ADDR:PORT (ADDR may be left out for every interface): " +
                 parse_host_port("h:", HostPortRules{}).error());
-  EXPECT_EQ(error("tcpin://:1/x"), "tcpin:// takes [ADDR]:PORT only, got \":1/x\"");
+  EXPECT_EQ(error("tcpin://:1/x"), "tcpin:// takes ADDR:PORT or :PORT only, got \":1/x\"");
   EXPECT_EQ(error("tcpin://:5770?bind=:1"), "tcpin:// takes no options, got \"bind\"");
   EXPECT_EQ(error("tcp://h:5760?bind=:1"), "tcp:// takes no options, got \"bind\"");
   EXPECT_EQ(error("udpin://239.1.1.1:14550"),

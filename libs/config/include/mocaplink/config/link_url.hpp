@@ -1,13 +1,13 @@
 // Vehicle link URLs (DESIGN.md "Command line", docs/config.md "Links"): MAVLink's usual endpoint
 // forms, as MAVProxy (udpin:/udpout:), MAVSDK, mavros and mavlink-router name them:
-//   udp://HOST:PORT[?bind=[ADDR]:PORT]  send to the vehicle (replies on the same socket); `bind`
+//   udp://HOST:PORT[?bind=ADDR:PORT]    send to the vehicle (replies on the same socket); `bind`
 //                                       fixes the local address, so every mocaplink process is
 //                                       the same peer to a vehicle that answers only its first one
-//   udpin://[ADDR]:PORT                 listen; answer the address the vehicle last spoke from
+//   udpin://ADDR:PORT or udpin://:PORT  listen; answer the address the vehicle last spoke from
 //   tcp://HOST:PORT                     connect to the vehicle's TCP server
-//   tcpin://[ADDR]:PORT                 a TCP server for one vehicle connection at a time
+//   tcpin://ADDR:PORT or tcpin://:PORT  a TCP server for one vehicle connection at a time
 //   serial:///dev/ttyUSB0?baud=921600   a serial port (COMn on Windows)
-//   ros2://[NAMESPACE]                  a PX4 through its uXRCE-DDS Agent, on the [ros2] domain
+//   ros2://NAMESPACE or ros2://         a PX4 through its uXRCE-DDS Agent, on the [ros2] domain
 //                                       (docs/ros2.md "PX4 over uXRCE-DDS")
 // Syntax only; the io adapter opens them (io::make_link).
 #pragma once
