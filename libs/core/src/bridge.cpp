@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "mocaplink/mavlink/signing.hpp"
@@ -25,6 +26,27 @@ EstimateSources sources_of(const VehicleSetup& setup, VehicleLink link) {
   if (link == VehicleLink::px4_dds) return px4_dds_sources();
   return estimate_sources(setup.autopilot(), setup.version(), setup.input(),
                           [&setup](std::string_view name) { return setup.parameter(name); });
+}
+
+/// Where the axes fit the vehicle at rest but the verdict disagrees, it is the vehicle's own
+/// yaw or position that is off (its compass, an estimator still converging, an origin elsewhere):
+/// the fix says so rather than leave "no axis change needed" beside a disagreement.
+std::string own_estimate_off(const Agreement& a, const AgreementThresholds& t) {
+  std::string parts;
+  char text[96];
+  if (a.yaw_offset_deg && std::abs(*a.yaw_offset_deg) > t.max_yaw_offset_deg) {
+    std::snprintf(text, sizeof text, "its yaw is %.1f° from mocap's (%g° allowed)",
+                  *a.yaw_offset_deg, t.max_yaw_offset_deg);
+    parts += text;
+  }
+  if (a.position_offset_m && *a.position_offset_m > t.max_position_offset_m) {
+    std::snprintf(text, sizeof text, "its position is %.2f m from mocap's (%g m allowed)",
+                  *a.position_offset_m, t.max_position_offset_m);
+    parts += (parts.empty() ? "" : " and ") + std::string(text);
+  }
+  if (parts.empty()) return {};
+  return "; what disagrees is the vehicle's own estimate, not the axes: " + parts +
+         " (a compass that is off, an estimator still converging, an origin elsewhere)";
 }
 
 /// A disagreement at rest: the axis settings that make mocap agree with the vehicle (issue 48).
@@ -50,7 +72,9 @@ void name_axis_fix(const WorldAxisMapping& world, const BodyAxisMapping& body,
     vehicle.heading_rad = a.heading_rad;
   }
   const AxisSettings current{world.up(), world.north(), body.forward(), body.up()};
-  state.set_axis_fix(find_axis_fix(raw, current, vehicle, source_up));
+  AxisFix fix = find_axis_fix(raw, current, vehicle, source_up);
+  if (fix.kind == AxisFixKind::agrees) fix.text += own_estimate_off(a, state.config().agreement);
+  state.set_axis_fix(std::move(fix));
 }
 
 /// A disagreement's fix named before the vehicle's compass heading arrived: named again

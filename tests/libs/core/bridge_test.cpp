@@ -571,11 +571,12 @@ TEST(BridgeVehicles, HeartbeatStateAndAgreementEvents) {
 /// Vehicle 0 reports mocaplink's own pose of body 0 back as its estimate (ATTITUDE yaw and
 /// LOCAL_POSITION_NED stamped `boot`), as a vehicle fusing our poses does; `keep` sees each output.
 template <typename Keep>
-void echo_estimate(Bridge& bridge, HostTime now, std::uint32_t boot, const Keep& keep) {
+void echo_estimate(Bridge& bridge, HostTime now, std::uint32_t boot, const Keep& keep,
+                   double yaw_offset_rad = 0.0) {
   const BodyEstimate& sent = bridge.snapshot(now).bodies[0].estimate;
   mavlink::Attitude att;
   att.time_boot_ms = boot;
-  att.yaw = static_cast<float>(euler_321_from_quaternion(sent.q_ned_frd).yaw_rad);
+  att.yaw = static_cast<float>(euler_321_from_quaternion(sent.q_ned_frd).yaw_rad + yaw_offset_rad);
   mavlink::LocalPositionNed pos;
   pos.time_boot_ms = boot;
   pos.x = static_cast<float>(sent.p_ned_m.x());
@@ -585,7 +586,11 @@ void echo_estimate(Bridge& bridge, HostTime now, std::uint32_t boot, const Keep&
   keep(bridge.on_vehicle_message(0, {1, 1, pos}, now));
 }
 
-std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_view up) {
+/// `ek3_yaw`: EK3_SRC1_YAW (6 ExternalNav: its yaw is mocap's; 1 compass: its own), and its yaw
+/// reported `yaw_offset_rad` off the pose it was sent.
+std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_view up,
+                                                                 float ek3_yaw = 6.0F,
+                                                                 double yaw_offset_rad = 0.0) {
   BridgeConfig c = two_vehicles();
   c.world = *WorldAxisMapping::parse(up, "+x");
   c.source_up = axis::pos_z;
@@ -615,14 +620,29 @@ std::pair<Agreement, std::vector<std::string>> external_nav_quad(std::string_vie
         v.param_id = r->param_id;
         v.param_type = 2;  // INT8, the value cast to float (ArduPilot)
         // Every other parameter 0: COMPASS_ENABLE too, so there is no heading of its own.
-        v.param_value = name == "EK3_SRC1_YAW" || name == "EK3_SRC1_POSXY" ? 6.0F : 0.0F;
+        v.param_value = name == "EK3_SRC1_YAW" ? ek3_yaw : name == "EK3_SRC1_POSXY" ? 6.0F : 0.0F;
         keep(bridge.on_vehicle_message(0, {1, 1, v}, now));
       }
     }
     if (n % 20 != 0) continue;  // its estimate at 5 Hz: mocaplink's own pose, fed back
-    echo_estimate(bridge, now, static_cast<std::uint32_t>(60'000 + 10 * n), keep);
+    echo_estimate(bridge, now, static_cast<std::uint32_t>(60'000 + 10 * n), keep, yaw_offset_rad);
   }
   return {bridge.snapshot(received_at(1200)).vehicles[0].vehicle.agreement, events};
+}
+
+TEST(BridgeVehicles, AxesThatFitBesideADisagreementPointAtTheVehiclesEstimate) {
+  // Its own (compass) yaw 20° off mocap's: the yaw check (10°) disagrees, but the axes fit at
+  // rest (the fix search allows a compass 45°): the fix says it is the vehicle's estimate.
+  const auto [agreement, events] = external_nav_quad("+z", 1.0F, 20.0 * std::numbers::pi / 180.0);
+  EXPECT_EQ(agreement.verdict, AgreementVerdict::disagree);
+  EXPECT_NEAR(*agreement.yaw_offset_deg, 20.0, 0.1);
+  ASSERT_TRUE(agreement.fix);
+  EXPECT_EQ(agreement.fix->kind, AxisFixKind::agrees);
+  EXPECT_EQ(agreement.fix->text,
+            "no axis change needed: the settings fit the vehicle at rest (tilt 0.0°, heading "
+            "20.0°); what disagrees is the vehicle's own estimate, not the axes: its yaw is 20.0° "
+            "from mocap's (10° allowed) (a compass that is off, an estimator still converging, "
+            "an origin elsewhere)");
 }
 
 TEST(BridgeVehicles, AnUpAxisMistakeWithExternalNavYawDisagreesAndNamesTheFix) {
