@@ -654,6 +654,7 @@ void Daemon::stop(const std::string& reason) {
   summary_timer_.cancel();
   // 2. Persist, report, close files. UDP sends were synchronous, so they have left already.
   save_signing();
+  summary_.flush(io::host_now(), true);  // the last word of every burst
   summary_.log(bridge_.snapshot(io::host_now()), vehicles_, queue_.overflows(),
                late_frames_.skipped(), late_frames_.superseded(), true);
   if (recorder_) {
@@ -727,6 +728,7 @@ int Daemon::run() {
       }
     }
     dispatch(bridge_.on_tick(now));
+    summary_.flush(now);
     ground_stations_.on_tick(now);
     for (std::size_t slot = 0; slot < vehicles_.size(); ++slot) {
       if (vehicles_[slot].link) ground_stations_.sample(slot, *vehicles_[slot].link, now);

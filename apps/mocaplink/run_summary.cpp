@@ -43,26 +43,31 @@ void Summary::describe_vehicle(const config::Vehicle& v, const io::Link& link, c
 }
 
 void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {
-  std::string suppressed;
   // What was asked of a vehicle, and its set-up, come a few lines per boot of the vehicle, never
   // per retry (core::VehicleStreams, core::VehicleSetup, which also logs a repeated STATUSTEXT
   // once per 30 s), and each says something different: all are logged.
-  if (event.kind != core::BridgeEventKind::vehicle_streams &&
-      event.kind != core::BridgeEventKind::vehicle_setup) {
-    auto& limit = limits_[std::string(core::to_string(event.kind)) + "/" + event.subject];
-    if (limit.last != core::HostTime{} && now - limit.last < std::chrono::seconds(1)) {
-      ++limit.suppressed;
-      return;
-    }
-    if (limit.suppressed > 0)
-      suppressed = fmt::format(" ({} similar suppressed)", limit.suppressed);
-    limit = Limit{now, 0};
+  if (event.kind == core::BridgeEventKind::vehicle_streams ||
+      event.kind == core::BridgeEventKind::vehicle_setup) {
+    write(event, 0);
+    return;
   }
+  if (const auto now_logged = limiter_.offer(event, now)) {
+    write(now_logged->event, now_logged->suppressed);
+  }
+}
+
+void Summary::flush(core::HostTime now, bool all) {
+  for (const core::LimitedEvent& held : limiter_.flush(now, all))
+    write(held.event, held.suppressed);
+}
+
+void Summary::write(const core::BridgeEvent& event, std::uint64_t suppressed) {
   const auto has = [&](std::string_view word) {
     return event.text.find(word) != std::string::npos;
   };
   const bool bad =
       event.kind == core::BridgeEventKind::body_lost ||
+      event.kind == core::BridgeEventKind::body_mirrored ||
       (event.kind == core::BridgeEventKind::agreement && has("disagree")) ||
       (event.kind == core::BridgeEventKind::origin_state &&
        (has("conflict") || has("unconfirmed"))) ||
@@ -75,7 +80,7 @@ void Summary::on_event(const core::BridgeEvent& event, core::HostTime now) {
        (has("no ATTITUDE") || has("no LOCAL_POSITION_NED") || has("not asked again")));
   const auto level = bad ? spdlog::level::warn : spdlog::level::info;
   spdlog::log(level, "{} {}: {}{}", core::to_string(event.kind), event.subject, event.text,
-              suppressed);
+              suppressed > 0 ? fmt::format(" ({} similar suppressed)", suppressed) : "");
 }
 
 void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<VehicleLink>& links,
@@ -86,9 +91,7 @@ void Summary::log(const core::BridgeSnapshot& snapshot, const std::vector<Vehicl
   previous_time_ = snapshot.time;
   // Rate limits of subjects quiet for a minute are forgotten: vehicles and bodies come and go
   // (dashboard), and the map must not grow with every name ever seen.
-  std::erase_if(limits_, [&](const auto& entry) {
-    return snapshot.time - entry.second.last > std::chrono::minutes(1);
-  });
+  limiter_.forget_quiet(snapshot.time, std::chrono::minutes(1));
   const auto& st = snapshot.station;
   // Periodic: the Station's rate over its last second. Final: the whole run's average.
   const core::HostTime run_start = begun_.value_or(snapshot.time);

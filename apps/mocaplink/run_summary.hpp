@@ -19,6 +19,7 @@
 
 #include "mocaplink/config/config.hpp"
 #include "mocaplink/core/bridge.hpp"
+#include "mocaplink/core/event_limiter.hpp"
 #include "run_links.hpp"
 
 namespace mocaplink::app {
@@ -39,9 +40,13 @@ class Summary {
     previous_time_ = now;
     begun_ = now;
   }
-  /// Logs a core event, at most one per (kind, subject) per second; the rest are counted and
-  /// mentioned with the next one logged.
+  /// Logs a core event, at most one per (kind, subject) per second (core::EventLimiter): one
+  /// within the second is held back, the newest of them logged by flush() once the second has
+  /// passed, the others counted and mentioned with it.
   void on_event(const core::BridgeEvent& event, core::HostTime now);
+  /// Logs the held-back events whose second has passed (all of them with `all`, at exit). Called
+  /// from the daemon's tick.
+  void flush(core::HostTime now, bool all = false);
   /// The periodic (or, with `final`, the last) summary. `links` by vehicle slot; the queue's
   /// overflows and the frames skipped as too old or as superseded (core::LateFrames) since the
   /// start.
@@ -50,10 +55,7 @@ class Summary {
            std::uint64_t superseded_frames, bool final);
 
  private:
-  struct Limit {
-    core::HostTime last{};
-    std::uint64_t suppressed = 0;
-  };
+  void write(const core::BridgeEvent& event, std::uint64_t suppressed);
   struct Previous {
     std::uint64_t poses = 0;
     std::uint64_t trouble = 0;  ///< frames dropped, errors and frames rejected, so far
@@ -62,7 +64,7 @@ class Summary {
   const config::Config& config_;
   std::chrono::milliseconds period_;
   std::uint64_t frames_ = 0;
-  std::map<std::string, Limit> limits_;
+  core::EventLimiter limiter_;
   std::map<std::string, Previous> previous_;       // by vehicle name
   std::map<std::string, core::HostTime> started_;  // by vehicle name: when it was described
   std::optional<core::HostTime> previous_time_;
