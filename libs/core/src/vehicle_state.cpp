@@ -371,10 +371,19 @@ void VehicleState::set_axis_fix(AxisFix fix) {
 VehicleReaction VehicleState::set_estimate_sources(const EstimateSources& sources, HostTime now) {
   VehicleReaction reaction;
   if (sources == agreement_.sources) return reaction;
+  // The declination read after the compass's field arrived turns the heading already compared:
+  // so that the fix the Bridge names again now measures from the heading with it.
+  const double turn_rad = sources.declination_rad - agreement_.sources.declination_rad;
   agreement_.sources = sources;
   if (!heading_wanted()) {
     vehicle_heading_offset_deg_.reset();
     agreement_.heading_rad.reset();
+  } else if (turn_rad != 0.0) {
+    if (agreement_.heading_rad) *agreement_.heading_rad += turn_rad;
+    if (vehicle_heading_offset_deg_) {
+      vehicle_heading_offset_deg_ =
+          wrap_deg_180(*vehicle_heading_offset_deg_ + turn_rad * 180.0 / std::numbers::pi);
+    }
   }
   if (vehicle_tilt_offset_deg_ || vehicle_yaw_offset_deg_ || vehicle_position_offset_m_) {
     update_agreement(now, reaction);

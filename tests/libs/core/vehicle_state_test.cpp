@@ -597,6 +597,21 @@ TEST(VehicleAgreement, TheCompassHeadingTakesTheVehiclesDeclination) {
   EXPECT_NEAR(*v.agreement().heading_rad, 20.0 * kPi / 180.0, 0.2 * kPi / 180.0);
 }
 
+TEST(VehicleAgreement, ADeclinationReadAfterTheFieldTurnsTheHeadingAlreadyCompared) {
+  // RAW_IMU arrives before COMPASS_DEC is read (the set-up list reads it last): the heading
+  // compared is magnetic until then; once read, it turns at once, not at the next ATTITUDE.
+  VehicleState v(VehicleStateConfig{});
+  (void)v.set_estimate_sources(external_nav_with_compass(), HostTime{});
+  const auto mocap = mocap_at({0.0, 0.0, -1.0}, 20.0 * kPi / 180.0);
+  (void)stream_with_heading(v, mocap, 8.0 * kPi / 180.0, 0, 1'000, AgreementVerdict::agree);
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, -12.0, 0.2);
+  EstimateSources declined = external_nav_with_compass();
+  declined.declination_rad = 12.0 * kPi / 180.0;
+  (void)v.set_estimate_sources(declined, at_ms(1'050));
+  EXPECT_NEAR(*v.agreement().heading_offset_deg, 0.0, 0.2);
+  EXPECT_NEAR(*v.agreement().heading_rad, 20.0 * kPi / 180.0, 0.2 * kPi / 180.0);
+}
+
 TEST(VehicleAgreement, AnAllZeroRawImuFieldIsNoCompass) {
   // ArduPilot fills RAW_IMU's field with zeros where it has no compass: no heading, so the nose
   // stays unchecked and nothing agrees on it.
