@@ -37,16 +37,28 @@ bool plausible(const BodyEstimate& e) {
 }
 
 /// Next time of a periodic message: phase-stable (advance by whole periods), restarting after a
-/// gap of more than one period (a stalled caller gets one message, not a burst).
-bool periodic_due(std::optional<HostTime>& next, HostTime now, Duration period) {
+/// gap of more than one period (a stalled caller gets one message, not a burst). The first call
+/// sends at once; the second comes `phase` (in [0, period)) later than one period after it, and
+/// every later one keeps that phase, after a gap too (the next is the first in phase at least a
+/// period on): vehicles of different phases never fall back into one tick.
+bool periodic_due(std::optional<HostTime>& next, HostTime now, Duration period, Duration phase) {
   if (!next) {
-    next = now + period;
+    next = now + period + phase;
     return true;
   }
   if (now < *next) return false;
   *next += period;
-  if (*next <= now) *next = now + period;
+  if (*next <= now) *next += period * ((now + period - *next + period - Duration{1}) / period);
   return true;
+}
+
+/// Where in the period a vehicle's clock-driven messages fall (Sender::on_tick): slot i at the
+/// fractional part of i times the golden ratio, so that any number of vehicles spread evenly over
+/// the period however the daemon's tick divides it; slot 0 at 0.
+Duration housekeeping_phase(std::size_t slot, Duration period) {
+  constexpr double kGoldenFraction = 0.6180339887498949;
+  const double f = std::fmod(static_cast<double>(slot) * kGoldenFraction, 1.0);
+  return std::chrono::duration_cast<Duration>(period * f);
 }
 
 }  // namespace
@@ -60,6 +72,7 @@ std::string max_rate_text() {
 Sender::Sender(const SenderConfig& config)
     : config_(config),
       period_(period_of(valid_rate(config.rate_hz) ? config.rate_hz : 1.0)),
+      phase_(housekeeping_phase(config.vehicle, kHeartbeatPeriod)),
       sequence_(config.system_id, config.component_id) {
   if (!valid_rate(config.rate_hz) || config.component_id == 0 || config.system_id == 0) {
     std::fprintf(stderr, "mocaplink::core::Sender: invalid SenderConfig (rate %g, ids %u/%u)\n",
@@ -149,12 +162,12 @@ void Sender::emit_kind(MessageKind kind, const BodyEstimate& estimate, const Sen
 
 void Sender::on_tick(HostTime now, std::uint64_t signing_now_10us, const GeodeticPosition* origin,
                      bool timesync_request, std::vector<OutgoingMessage>& out) {
-  if (periodic_due(next_heartbeat_, now, kHeartbeatPeriod)) {
+  if (periodic_due(next_heartbeat_, now, kHeartbeatPeriod, phase_)) {
     ++counters_.heartbeats;
     emit(build_heartbeat(), now, signing_now_10us, out);
   }
   if (origin != nullptr) {
-    if (periodic_due(next_origin_, now, kOriginPeriod)) {
+    if (periodic_due(next_origin_, now, kOriginPeriod, phase_)) {
       ++counters_.origins;
       emit(build_set_gps_global_origin(*origin, config_.system_id, host_time_usec(now)), now,
            signing_now_10us, out);
@@ -168,7 +181,7 @@ void Sender::on_tick(HostTime now, std::uint64_t signing_now_10us, const Geodeti
   } else {
     next_origin_.reset();
   }
-  if (timesync_request && periodic_due(next_timesync_, now, kTimesyncRequestPeriod)) {
+  if (timesync_request && periodic_due(next_timesync_, now, kTimesyncRequestPeriod, phase_)) {
     ++counters_.timesync_requests;
     emit(build_timesync_request(ns_of(now), config_.system_id, 1), now, signing_now_10us, out);
   }

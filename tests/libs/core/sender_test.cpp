@@ -371,6 +371,78 @@ TEST(SenderClock, HeartbeatAtOneHertz) {
   EXPECT_EQ(out[3].time, HostTime{milliseconds(6000)});
 }
 
+// Issue 50: 1000 vehicles' heartbeats (and origins, TIMESYNC requests) once left in one tick of
+// the daemon's 100 ms, holding every pose behind 2000 sends for 10 ms once a second. Each vehicle
+// keeps its 1 Hz, the first at once, but the ticks after the first share the load.
+TEST(SenderClock, ManyVehiclesHousekeepingSpreadOverTheSecond) {
+  constexpr std::size_t kVehicles = 1000;
+  const GeodeticPosition origin{47.3977418, 8.5455938, 488.0};
+  std::vector<Sender> senders;
+  senders.reserve(kVehicles);
+  for (std::size_t i = 0; i < kVehicles; ++i) {
+    SenderConfig c = config({MessageKind::odometry}, 50.0);
+    c.vehicle = i;
+    senders.emplace_back(c);
+  }
+  std::vector<std::vector<HostTime>> beats(kVehicles);
+  std::vector<std::size_t> per_tick;
+  std::vector<OutgoingMessage> out;
+  for (int ms = 0; ms < 10'000; ms += 100) {
+    std::size_t frames = 0;
+    for (std::size_t i = 0; i < kVehicles; ++i) {
+      out.clear();
+      senders[i].on_tick(HostTime{milliseconds(ms)}, 0, &origin, true, out);
+      frames += out.size();
+      for (const auto& m : out) {
+        if (std::holds_alternative<mavlink::Heartbeat>(m.message)) beats[i].push_back(m.time);
+      }
+    }
+    per_tick.push_back(frames);
+  }
+  // The first tick: every vehicle at once (heartbeat, origin, TIMESYNC request).
+  EXPECT_EQ(per_tick.front(), 3 * kVehicles);
+  // Afterwards about a tenth of them per tick, never much more: 3 frames each, plus every third
+  // origin's request.
+  for (std::size_t t = 11; t < per_tick.size(); ++t) {
+    EXPECT_LE(per_tick[t], 3 * kVehicles / 10 * 13 / 10 + kVehicles / 10) << "tick " << t;
+    EXPECT_GE(per_tick[t], 3 * kVehicles / 10 * 7 / 10) << "tick " << t;
+  }
+  for (std::size_t i = 0; i < kVehicles; ++i) {
+    ASSERT_GE(beats[i].size(), 9U) << "vehicle " << i;  // 10 s: the second may come at 2 s
+    EXPECT_EQ(beats[i].front(), HostTime{});
+    // The second within two periods of the first, then one a second exactly (100 ms ticks).
+    EXPECT_GE(beats[i][1] - beats[i][0], seconds(1));
+    EXPECT_LE(beats[i][1] - beats[i][0], seconds(2));  // due before 2 s, sent at the tick
+    for (std::size_t k = 2; k < beats[i].size(); ++k) {
+      EXPECT_EQ(beats[i][k] - beats[i][k - 1], seconds(1)) << "vehicle " << i << " beat " << k;
+    }
+  }
+}
+
+// After a stall of the caller longer than a period: one message at once, the next in the
+// vehicle's phase again (not the stall's), at least a period later.
+TEST(SenderClock, PhaseKeptAfterAStall) {
+  SenderConfig c = config({MessageKind::odometry}, 50.0);
+  c.vehicle = 1;  // phase 618 ms
+  Sender sender(c);
+  std::vector<OutgoingMessage> out;
+  for (int ms : {0, 1700, 2700, 6050, 6700, 7100, 7700, 8700}) {
+    sender.on_tick(HostTime{milliseconds(ms)}, 0, nullptr, false, out);
+  }
+  std::vector<HostTime> at;
+  for (const auto& m : out) at.push_back(m.time);
+  // 0 at once; 1.618 due → sent at 1.7; 2.618 → 2.7; stalled to 6.05: one at once, the next at
+  // 7.618 (the first in phase a period on; not 7.05, a period after the stall), sent at 7.7;
+  // then 8.618 → 8.7.
+  const std::vector<HostTime> expected{HostTime{},
+                                       HostTime{milliseconds(1700)},
+                                       HostTime{milliseconds(2700)},
+                                       HostTime{milliseconds(6050)},
+                                       HostTime{milliseconds(7700)},
+                                       HostTime{milliseconds(8700)}};
+  EXPECT_EQ(at, expected);
+}
+
 TEST(SenderClock, OriginEverySecondWithRequestEveryThird) {
   Sender sender(config({MessageKind::odometry}, 50.0));
   const GeodeticPosition origin{47.3977418, 8.5455938, 488.0};

@@ -143,7 +143,12 @@ class Sender {
   /// Clock-driven messages at host time `now`: HEARTBEAT when due (the first tick sends at once);
   /// SET_GPS_GLOBAL_ORIGIN to `origin_target` when `origin` is non-null and due (every 3rd one is
   /// followed by a REQUEST_MESSAGE for GPS_GLOBAL_ORIGIN); a TIMESYNC request when
-  /// `timesync_request` is true and due.
+  /// `timesync_request` is true and due. Each once a second, in a phase of the second that
+  /// follows the vehicle's slot (SenderConfig::vehicle; slot 0 at the first tick's phase): a
+  /// thousand vehicles' heartbeats and requests spread over the second instead of leaving in
+  /// one tick that holds every pose behind it (issue 50). The second of each comes up to a
+  /// period later than one period after the first; after a stall, one at once and the next in
+  /// phase at least a period later, never a burst.
   void on_tick(HostTime now, std::uint64_t signing_now_10us, const GeodeticPosition* origin,
                bool timesync_request, std::vector<OutgoingMessage>& out);
 
@@ -183,6 +188,7 @@ class Sender {
 
   SenderConfig config_;
   Duration period_{};
+  Duration phase_{};  ///< of the clock-driven messages in their period (on_tick)
   bool paused_ = false;
   mavlink::SequenceCounter sequence_;
   std::optional<mavlink::OutgoingSigner> signer_;
