@@ -575,7 +575,7 @@ TEST(BridgeVehicles, HeartbeatStateAndAgreementEvents) {
 template <typename Keep>
 void echo_estimate(Bridge& bridge, HostTime now, std::uint32_t boot, const Keep& keep,
                    double yaw_offset_rad = 0.0) {
-  const BodyEstimate& sent = bridge.snapshot(now).bodies[0].estimate;
+  const BodyEstimate sent = bridge.snapshot(now).bodies[0].estimate;  // a copy: the snapshot goes
   mavlink::Attitude att;
   att.time_boot_ms = boot;
   att.yaw = static_cast<float>(euler_321_from_quaternion(sent.q_ned_frd).yaw_rad + yaw_offset_rad);
