@@ -13,6 +13,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -1069,9 +1070,11 @@ TEST(CaptureTime, MinimumOffsetRemovesJitterAndNeverLiesInTheFuture) {
 
 // begin_frame + emit_frame over slot ranges + end_frame is on_frame: the same bytes to the same
 // vehicles in the same order per vehicle, the same events and the same Station and body figures
-// after every frame. Two ways of calling it: ranges in any order from one thread, each range
-// tracking its own vehicles' bodies on demand (the daemon with one send thread), and
-// track_bodies() first, then the ranges (as several threads would run them). The reference is
+// after every frame. Three ways of calling it: ranges in any order from one thread, each range
+// tracking its own vehicles' bodies on demand (the daemon with one send thread),
+// track_bodies() first, then the ranges (as several threads would run them), and
+// track_bodies() first, then two parts of 2-slot chunks on two threads at once (the daemon with
+// two send threads; Quad and Rover have vehicles in both parts). The reference is
 // on_frame, and a third Bridge that runs every tracker before any vehicle (begin_frame,
 // track_bodies, one range, end_frame: the order before bodies were tracked on demand) must agree
 // with it too. Seven vehicles on four bodies, every profile kind, signed and decimated ones, an
@@ -1120,8 +1123,9 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
       EXPECT_EQ(a.bodies[i].estimate.p_ned_m, b.bodies[i].estimate.p_ned_m);
     }
   };
-  for (const bool track_first : {false, true}) {
-    SCOPED_TRACE(track_first ? "track_bodies first" : "bodies tracked on demand");
+  enum class Steps { on_demand, track_first, two_threads };
+  for (const Steps mode : {Steps::on_demand, Steps::track_first, Steps::two_threads}) {
+    SCOPED_TRACE(static_cast<int>(mode));
     Bridge whole = make_bridge(c);
     Bridge steps = make_bridge(c);
     Bridge eager = make_bridge(c);
@@ -1166,16 +1170,41 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
       ASSERT_EQ(out.events.size(), whole_events.size());
 
       steps.begin_frame(f, received_at(n), out);
-      if (track_first) steps.track_bodies();
-      // Ranges [4, 99), [2, 4), [0, 2), the way three threads might finish.
-      for (const auto& [first, end] :
-           {std::pair<std::size_t, std::size_t>{4, 99}, {2, 4}, {0, 2}}) {
-        part.clear();
-        steps.emit_frame(first, end, part);
-        for (const auto& m : part) {
+      const auto keep = [&](const std::vector<OutgoingMessage>& messages, std::size_t first,
+                            std::size_t end) {
+        for (const auto& m : messages) {
           ASSERT_GE(m.vehicle, first);
           ASSERT_LT(m.vehicle, end);
           sent_steps[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+        }
+      };
+      if (mode == Steps::on_demand || mode == Steps::track_first) {
+        if (mode == Steps::track_first) steps.track_bodies();
+        // Ranges [4, 99), [2, 4), [0, 2), the way three threads might finish.
+        for (const auto& [first, end] :
+             {std::pair<std::size_t, std::size_t>{4, 99}, {2, 4}, {0, 2}}) {
+          part.clear();
+          steps.emit_frame(first, end, part);
+          keep(part, first, end);
+        }
+      } else {
+        // Two parts of 2-slot chunks: part 0 has slots 0-1, 4-5, 8-9; part 1 slots 2-3, 6-7.
+        constexpr std::size_t kChunk = 2;
+        constexpr std::size_t kParts = 2;
+        steps.track_bodies();
+        std::array<std::vector<OutgoingMessage>, kParts> parts;
+        const auto run_part = [&](std::size_t p) {
+          for (std::size_t first = p * kChunk; first < steps.slot_count();
+               first += kParts * kChunk) {
+            steps.emit_frame(first, first + kChunk, parts[p]);
+          }
+        };
+        std::thread other(run_part, 1);
+        run_part(0);
+        other.join();
+        for (std::size_t p = 0; p < kParts; ++p) {
+          for (const auto& m : parts[p]) ASSERT_EQ(m.vehicle / kChunk % kParts, p);
+          keep(parts[p], 0, steps.slot_count());
         }
       }
       steps.end_frame(out);
