@@ -68,6 +68,6 @@ for ((round = 1; round <= rounds; round++)); do
     "$src/bench/e2e/run_e2e.sh" "$bin" "$receivers" "$floor" "${SECONDS_PER_ROW:-10}" \
       "${counts[@]}" | sed -n '3,$p' | sed "s/^/| $which | $round /"
   done
-done | { echo "| build | round | vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS | superseded | CPU per datagram, ratio |"
+done | { echo "| build | round | vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS | superseded floor / mocaplink | CPU per datagram, ratio |"
   echo "|---|---:|---:|---:|---:|---|---|---|---|---|---:|---:|---:|---:|"
   cat; }

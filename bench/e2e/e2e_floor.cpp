@@ -10,7 +10,10 @@
 // time (core::CaptureTimeMapper, as the bridge stamps it) and the header's system id set to each
 // vehicle's (as mocaplink sends it; e2e_receivers --sockets shared tells vehicles apart by it; the
 // checksum is left as it is). No tracking, no decimation, no encoding, no logic. A frame that
-// waited too long for the loop is skipped as the daemon skips it (core::LateFrames).
+// waited too long for the loop is skipped, and once the loop is behind a frame with a newer one
+// already waiting is superseded, as the daemon does both (core::LateFrames; every frame of the
+// e2e source has every body, so a newer frame always has this one's bodies): a loop that cannot
+// keep up loses frames the same way in both, and "lost" compares like with like.
 // With --listen, each socket also waits for datagrams from its vehicle on the loop, as the daemon's
 // UDP links do (an asio async_receive; what arrives is counted and dropped): the floor of a bridge
 // that hears its vehicles. The kernel then checks the socket's waiters (the loop's epoll) for every
@@ -22,7 +25,7 @@
 // across vehicles, the other way a bridge could use sendmmsg (docs/performance.md).
 // Usage: e2e_floor [--listen] [--shared-socket] --config C.toml   (written by e2e_receivers;
 // stops on SIGTERM/SIGINT and prints "floor: N frames, M queue overflows, K late frames skipped,
-// F sends failed, ..." on stderr)
+// S frames superseded, F sends failed, ..." on stderr)
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -178,6 +181,7 @@ int main(int argc, char** argv) {
     mocaplink::core::SourceTime capture;
     std::optional<mocaplink::core::Duration> latency;
     mocaplink::core::HostTime received;
+    mocaplink::core::HostTime queued;  // handed to the loop (how late the loop is)
   };
   mocaplink::io::BoundedQueue<Queued> queue(256);  // run_daemon.cpp's kQueueCapacity
   std::vector<Queued> batch;
@@ -217,11 +221,24 @@ int main(int argc, char** argv) {
   }
   std::uint64_t frames = 0;
   std::atomic<std::uint64_t> failed_sends{0};  // refused by the OS (a full buffer, an ICMP error)
-  mocaplink::core::LateFrames late;  // frames that waited too long are skipped, as in the daemon
+  mocaplink::core::LateFrames late;   // late and superseded frames are skipped, as in the daemon
+  mocaplink::core::MocapFrame stamp;  // what LateFrames reads of a frame: its capture time
+  const mocaplink::core::MocapFrame no_bodies;  // supersedes any of the source's frames
   const auto drain = [&] {
     batch.clear();
     queue.drain(batch);
+    if (batch.empty()) return;
     for (const Queued& f : batch) {
+      stamp.capture_time = f.capture;
+      late.observe(stamp);
+    }
+    late.begin_batch(batch.front().queued, mocaplink::io::host_now());  // as run_daemon.cpp does
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      const Queued& f = batch[i];
+      if (i + 1 < batch.size() &&
+          late.skip_if_superseded(no_bodies, f.received, no_bodies, batch[i + 1].received)) {
+        continue;
+      }
       if (late.skip_if_late(f.received, mocaplink::io::host_now())) continue;  // as the daemon does
       ++frames;
       const std::uint64_t time_usec =
@@ -273,10 +290,12 @@ int main(int argc, char** argv) {
         }
       });
     }
+    late.end_batch(mocaplink::io::host_now());
   };
   source->start(
       [&](mocaplink::core::MocapFrame f, mocaplink::core::HostTime received) {
-        if (queue.push(Queued{f.capture_time, f.source_latency, received})) {
+        if (queue.push(
+                Queued{f.capture_time, f.source_latency, received, mocaplink::io::host_now()})) {
           asio::post(loop, drain);
         }
       },
@@ -284,10 +303,11 @@ int main(int argc, char** argv) {
   loop.run();
   std::fprintf(
       stderr,
-      "floor: %llu frames, %llu queue overflows, %llu late frames skipped, %llu sends failed, "
-      "%zu-byte datagrams, %zu threads%s\n",
+      "floor: %llu frames, %llu queue overflows, %llu late frames skipped, %llu frames "
+      "superseded, %llu sends failed, %zu-byte datagrams, %zu threads%s\n",
       static_cast<unsigned long long>(frames), static_cast<unsigned long long>(queue.overflows()),
       static_cast<unsigned long long>(late.skipped()),
+      static_cast<unsigned long long>(late.superseded()),
       static_cast<unsigned long long>(failed_sends.load()), size, threads,
       listen ? (", listening (" + std::to_string(heard) + " datagrams heard)").c_str() : "");
   return 0;

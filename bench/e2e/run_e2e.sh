@@ -6,7 +6,8 @@
 # and of mocaplink (frame's host capture time → datagram received, CLOCK_MONOTONIC), mocaplink's
 # ratio to the floor, the p50 of the first and of the last vehicle alone (what comes before any
 # vehicle's send, and what each vehicle adds), the CPU of both (user+sys as % of one core) and
-# mocaplink's peak RSS, the frames mocaplink superseded (issue 30: a newer frame was waiting), and
+# mocaplink's peak RSS, the frames the floor and mocaplink superseded (issue 30: the loop was
+# behind and a newer frame was waiting; both apply core::LateFrames alike, so both lose alike), and
 # mocaplink's CPU time per datagram received as a multiple of the floor's (both over the same wall
 # time: CPU % / datagrams received).
 # Usage: bench/e2e/run_e2e.sh MOCAPLINK_BIN RECEIVERS_BIN FLOOR_BIN [SECONDS] [N...]
@@ -94,7 +95,8 @@ measure() {
     -e 's/^floor: [0-9]* frames, \([0-9]*\) queue overflows.*/\1/p' "$work/run.err")
   late=$(sed -n -e 's/.*final: source .* \([0-9]*\) late frames skipped.*/\1/p' \
     -e 's/^floor: .* \([0-9]*\) late frames skipped.*/\1/p' "$work/run.err")
-  superseded=$(sed -n -e 's/.*final: source .* \([0-9]*\) frames superseded.*/\1/p' "$work/run.err")
+  superseded=$(sed -n -e 's/.*final: source .* \([0-9]*\) frames superseded.*/\1/p' \
+    -e 's/^floor: .* \([0-9]*\) frames superseded.*/\1/p' "$work/run.err")
   node -e '
     const r = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8").split("\n")[1]);
     const [frames, user, sys, wall, rss] = process.argv.slice(2).map(Number);
@@ -105,14 +107,14 @@ measure() {
     "$wall" "$rss_kb" "${superseded:-0}"
 }
 
-echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS | superseded | CPU per datagram, ratio |"
+echo "| vehicles | mocap frames | lost floor / mocaplink | floor p50 / p99 | mocaplink p50 / p99 | ratio p50 / p99 | first / last vehicle p50, floor | first / last vehicle p50, mocaplink | CPU floor / mocaplink | peak RSS | superseded floor / mocaplink | CPU per datagram, ratio |"
 echo "|---:|---:|---:|---|---|---|---|---|---:|---:|---:|---:|"
 for n in "${counts[@]}"; do
   rows=()
   for ((rep = 0; rep < ${REPEAT:-1}; rep++)); do
-    read -r ff fr fp50 fp99 fcpu _ ffirst flast _ < <(measure "$n" "$floor" "${floor_args[@]}")
+    read -r ff fr fp50 fp99 fcpu _ ffirst flast fsup < <(measure "$n" "$floor" "${floor_args[@]}")
     read -r mf mr mp50 mp99 cpu rss mfirst mlast msup < <(measure "$n" "$bin" run)
-    rows+=("$ff $fr $fp50 $fp99 $fcpu $mf $mr $mp50 $mp99 $cpu $rss $ffirst $flast $mfirst $mlast $msup")
+    rows+=("$ff $fr $fp50 $fp99 $fcpu $mf $mr $mp50 $mp99 $cpu $rss $ffirst $flast $mfirst $mlast $msup $fsup")
   done
   # One row per N: each column the median over the repetitions, the ratios the median of each
   # repetition's own ratio (floor and mocaplink measured back to back).
@@ -129,7 +131,8 @@ for n in "${counts[@]}"; do
       `${median(reps.map((r) => lost(r, 5, 6))).toFixed(3)} % | ${ms(col(2))} / ${ms(col(3))} ms | ` +
       `${ms(col(7))} / ${ms(col(8))} ms | ${ratio(7, 2)} / ${ratio(8, 3)} | ` +
       `${ms(col(11))} / ${ms(col(12))} ms | ${ms(col(13))} / ${ms(col(14))} ms | ` +
-      `${col(4).toFixed(1)} / ${col(9).toFixed(1)} % | ${col(10).toFixed(1)} MiB | ${col(15)} | ` +
+      `${col(4).toFixed(1)} / ${col(9).toFixed(1)} % | ${col(10).toFixed(1)} MiB | ` +
+      `${col(16)} / ${col(15)} | ` +
       `${median(reps.map((r) => (r[9] / r[6]) / (r[4] / r[1]))).toFixed(2)} |`);
   ' "$n" "${rows[@]}"
 done
