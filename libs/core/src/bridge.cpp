@@ -597,18 +597,31 @@ BridgeOutput Bridge::on_vehicle_message(std::size_t vehicle, const ReceivedMessa
 
 BridgeOutput Bridge::on_tick(HostTime now) {
   BridgeOutput out;
+  begin_tick();
+  tick_vehicles(now, 0, vehicles_.size(), out);
+  return out;
+}
+
+void Bridge::begin_tick() {
   // The median capture age is the same for every vehicle: one sort of the window per tick.
-  std::optional<double> capture_age_ms;
+  tick_capture_age_ms_.reset();
   if (const auto age = capture_age_.summary()) {
-    capture_age_ms = std::chrono::duration<double, std::milli>(age->p50).count();
+    tick_capture_age_ms_ = std::chrono::duration<double, std::milli>(age->p50).count();
   }
-  for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+}
+
+void Bridge::tick_vehicles(HostTime now, std::size_t first, std::size_t end, BridgeOutput& out) {
+  out.messages.clear();
+  out.events.clear();
+  const std::optional<double> capture_age_ms = tick_capture_age_ms_;
+  end = std::min(end, vehicles_.size());
+  for (std::size_t i = first; i < end; ++i) {
     if (!vehicles_[i]) continue;
     Vehicle& v = *vehicles_[i];
     const VehicleReaction reaction = v.state.on_tick(now);
     vehicle_events(i, reaction, now, out);
     if (!v.spec.enabled) continue;
-    const std::size_t first = out.messages.size();
+    const std::size_t sent_before = out.messages.size();
     // The origin goes only to a vehicle heard, and to a PX4 only from 1.15 (origin_gate).
     // The heartbeat's autopilot at once (the set-up learns it on its own tick); the set-up's
     // version only when it is of that autopilot.
@@ -629,7 +642,7 @@ BridgeOutput Bridge::on_tick(HostTime now) {
     if (mavlink) {
       v.sender.on_tick(now, signing_now_10us(now), origin, config_.timesync_requests, out.messages);
     }
-    for (std::size_t k = first; k < out.messages.size(); ++k) {
+    for (std::size_t k = sent_before; k < out.messages.size(); ++k) {
       const auto* ts = std::get_if<mavlink::Timesync>(&out.messages[k].message);
       if (ts != nullptr && ts->tc1 == 0) v.state.on_timesync_request_sent(ts->ts1);
     }
@@ -680,7 +693,6 @@ BridgeOutput Bridge::on_tick(HostTime now) {
       v.sender.send(m, now, signing_now_10us(now), out.messages);
     }
   }
-  return out;
 }
 
 SetupRequestResult Bridge::apply_setup(std::size_t slot, std::span<const std::string> parameters,

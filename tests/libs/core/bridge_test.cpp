@@ -1230,5 +1230,84 @@ TEST(Bridge, FrameInStepsOverSlotRangesIsOnFrame) {
   }
 }
 
+// begin_tick + tick_vehicles over slot ranges is on_tick: the same bytes to the same vehicles in
+// the same order per vehicle, and the same events, tick after tick, with frames in between. Six
+// vehicles heard as PX4 and ArduPilot (heartbeats, TIMESYNC requests, the origin, the agreement
+// check's stream requests, the set-up's parameter reads), one silent, a disabled one, an empty
+// slot, a vehicle removed and added again; the ranges in an order threads of a chain could not
+// take ([4, 99), [0, 2), [2, 4)), to show that no part depends on another.
+TEST(Bridge, TickInPartsOverSlotRangesIsOnTick) {
+  BridgeConfig c = two_vehicles();
+  c.timesync_requests = true;
+  c.vehicles.push_back(vehicle("q2", "Quad", Profile::classic, 3));
+  c.vehicles.push_back(vehicle("r2", "Rover", Profile::px4_gps, 4));
+  c.vehicles.push_back(vehicle("q3", "Quad", Profile::ardupilot, 5));
+  c.vehicles.push_back(vehicle("gone", "Quad", Profile::px4, 6));
+  c.vehicles.push_back(vehicle("silent", "Rover", Profile::px4, 7));
+  c.vehicles.push_back(vehicle("off", "Quad", Profile::px4, 8));
+  c.vehicles[7].enabled = false;
+  const VehicleSpec gone = c.vehicles[5];
+  Bridge whole = make_bridge(c);
+  Bridge parts = make_bridge(c);
+  using Bytes = std::vector<std::uint8_t>;
+  std::map<std::size_t, std::vector<Bytes>> sent_whole;
+  std::map<std::size_t, std::vector<Bytes>> sent_parts;
+  std::map<std::string, std::vector<std::string>> events_whole;
+  std::map<std::string, std::vector<std::string>> events_parts;
+  const auto keep = [](const BridgeOutput& out, auto& sent, auto& events) {
+    for (const auto& m : out.messages) {
+      sent[m.vehicle].emplace_back(m.frame.bytes().begin(), m.frame.bytes().end());
+    }
+    for (const auto& e : out.events) events[e.subject].push_back(e.text);
+  };
+  std::map<std::uint32_t, std::size_t> kinds;  // message ids sent by the ticks
+  BridgeOutput out;
+  for (std::uint64_t n = 1; n <= 3000; ++n) {  // 30 s of 100 Hz frames, a tick every 100 ms
+    const HostTime now = received_at(n);
+    for (Bridge* b : {&whole, &parts}) {
+      b->on_frame(frame_at(n, true, n % 1000 < 700), now, out);
+      if (n % 100 == 0) {  // heartbeats of the heard vehicles, once a second
+        for (const std::size_t slot : {0U, 1U, 2U, 3U, 4U, 5U}) {
+          mavlink::Heartbeat hb;
+          hb.type = 2;
+          hb.autopilot = slot % 2 == 0 ? kMavAutopilotPx4 : kMavAutopilotArdupilot;
+          b->on_vehicle_message(slot, {static_cast<std::uint8_t>(slot + 1), 1, hb}, now);
+        }
+      }
+      if (n == 1200) {
+        ASSERT_TRUE(b->remove_vehicle(5));
+      }
+      if (n == 2000) {
+        ASSERT_TRUE(std::holds_alternative<std::size_t>(b->add_vehicle(gone)));
+      }
+    }
+    if (n % 10 != 0) continue;
+    const BridgeOutput ticked = whole.on_tick(now);
+    keep(ticked, sent_whole, events_whole);
+    for (const auto& m : ticked.messages) {
+      ++kinds[std::visit([](const auto& msg) { return std::decay_t<decltype(msg)>::kId; },
+                         m.message)];
+    }
+    parts.begin_tick();
+    for (const auto& [first, end] : {std::pair<std::size_t, std::size_t>{4, 99}, {0, 2}, {2, 4}}) {
+      parts.tick_vehicles(now, first, end, out);
+      for (const auto& m : out.messages) {
+        ASSERT_GE(m.vehicle, first);
+        ASSERT_LT(m.vehicle, end);
+      }
+      keep(out, sent_parts, events_parts);
+    }
+  }
+  EXPECT_EQ(sent_parts, sent_whole);
+  EXPECT_EQ(events_parts, events_whole);
+  EXPECT_EQ(sent_whole.size(), 7U);  // every enabled vehicle: heartbeats at least
+  EXPECT_GT(kinds[mavlink::Heartbeat::kId], 0U);
+  EXPECT_GT(kinds[mavlink::Timesync::kId], 0U);
+  EXPECT_GT(kinds[mavlink::SetGpsGlobalOrigin::kId], 0U);
+  EXPECT_GT(kinds[mavlink::ParamRequestRead::kId], 0U);
+  EXPECT_GT(kinds[mavlink::CommandLong::kId], 0U);  // the agreement check's stream requests
+  EXPECT_FALSE(events_whole.empty());
+}
+
 }  // namespace
 }  // namespace mocaplink::core

@@ -277,6 +277,15 @@ class Bridge {
   /// Time passes: heartbeats, origin messages, TIMESYNC requests, link timeouts, and the requests
   /// for ATTITUDE / LOCAL_POSITION_NED (vehicle_streams.hpp) of enabled vehicles.
   BridgeOutput on_tick(HostTime now);
+  /// on_tick in parts, for a caller that lets frames through between them (docs/daemon.md "The
+  /// tick in parts"): begin_tick takes what is the same for every vehicle in a tick (the frames'
+  /// median capture age); tick_vehicles then ticks the vehicles in slots [first, end) (empty slots
+  /// skipped, `end` clamped to slot_count()) at `now`, into `out` (cleared first). begin_tick and
+  /// tick_vehicles(now, 0, slot_count(), out) are exactly on_tick(now), and so are calls over
+  /// disjoint ranges that cover the slots, in any order: the same messages per vehicle, the same
+  /// events. Each part takes its own `now`, the time it runs (a TIMESYNC request carries it).
+  void begin_tick();
+  void tick_vehicles(HostTime now, std::size_t first, std::size_t end, BridgeOutput& out);
   /// The mocap source connected or went away (Station figures).
   void on_source_connection(bool connected);
   /// Wall clock: `unix_us` is the Unix time (µs) at host time `host`. Enables GPS_INPUT
@@ -411,6 +420,7 @@ class Bridge {
   /// Capture → received of recent frames (received − the capture time placed on the host clock,
   /// which includes the latency the source reports): the set-up's delay recommendation.
   LatencyWindow capture_age_;
+  std::optional<double> tick_capture_age_ms_;  // capture_age_'s median at begin_tick
 };
 
 }  // namespace mocaplink::core
