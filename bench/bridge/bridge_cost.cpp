@@ -1,6 +1,12 @@
 // Per-frame CPU cost of the bridge's core (issue 14: sizing a Raspberry Pi for N vehicles).
 //
 //   bridge_cost [--frames N] [--repetitions R] [--only-vehicles N --only-sending 0|1]
+//   bridge_cost --tick N
+//
+// --tick N: the clock-driven side instead (issue 50): N vehicles sending, none of them heard, 300
+// calls of Bridge::on_tick 100 ms apart (the daemon's cadence) and a BridgeSnapshot every tenth:
+// the thread CPU time of each, median and largest, and the messages a tick returns to be sent
+// (their sends are not in the figure).
 //
 // --only-*: one run of one case and no table, for an instruction count of Bridge::on_frame with
 // valgrind --tool=callgrind --toggle-collect='mocaplink::core::Bridge::on_frame*'.
@@ -44,7 +50,7 @@ mc::BridgeConfig make_config(std::size_t vehicles, bool sending) {
     mc::VehicleSpec v;
     v.name = "v" + std::to_string(i);
     v.body = "Body" + std::to_string(i);
-    v.system_id = static_cast<std::uint8_t>(i + 1);
+    v.system_id = static_cast<std::uint8_t>(i % 250 + 1);  // ids repeat beyond 250 vehicles
     v.rate_hz = kFrameRateHz;
     v.enabled = sending;
     v.signing_key = std::array<std::uint8_t, 32>{};
@@ -105,6 +111,32 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+void run_ticks(std::size_t vehicles) {
+  auto made = mc::Bridge::make(make_config(vehicles, true), mc::host_time_from_ns(0));
+  auto& bridge = std::get<mc::Bridge>(made);
+  constexpr int kTicks = 300;
+  std::vector<double> ticks;
+  std::vector<double> snapshots;
+  std::size_t messages = 0;
+  for (int k = 1; k <= kTicks; ++k) {
+    const auto now = mc::host_time_from_ns(std::int64_t{k} * 100'000'000);
+    const double start = thread_cpu_ns();
+    messages += bridge.on_tick(now).messages.size();
+    ticks.push_back(thread_cpu_ns() - start);
+    if (k % 10 == 0) {
+      const double before = thread_cpu_ns();
+      (void)bridge.snapshot(now);
+      snapshots.push_back(thread_cpu_ns() - before);
+    }
+  }
+  std::printf(
+      "%zu vehicles: on_tick median %.0f us, at most %.0f us, %.1f messages a tick; snapshot "
+      "median %.0f us, at most %.0f us\n",
+      vehicles, median(ticks) / 1e3, *std::max_element(ticks.begin(), ticks.end()) / 1e3,
+      static_cast<double>(messages) / kTicks, median(snapshots) / 1e3,
+      *std::max_element(snapshots.begin(), snapshots.end()) / 1e3);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,6 +150,10 @@ int main(int argc, char** argv) {
     if (arg == "--repetitions") repetitions = std::atoi(argv[i + 1]);
     if (arg == "--only-vehicles") only_vehicles = std::atol(argv[i + 1]);
     if (arg == "--only-sending") only_sending = std::atoi(argv[i + 1]);
+    if (arg == "--tick") {
+      run_ticks(static_cast<std::size_t>(std::strtoul(argv[i + 1], nullptr, 10)));
+      return 0;
+    }
   }
   if (only_vehicles > 0) {
     const Result r = run(static_cast<std::size_t>(only_vehicles), only_sending != 0, frames);
