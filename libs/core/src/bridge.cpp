@@ -613,7 +613,6 @@ void Bridge::begin_tick() {
 void Bridge::tick_vehicles(HostTime now, std::size_t first, std::size_t end, BridgeOutput& out) {
   out.messages.clear();
   out.events.clear();
-  const std::optional<double> capture_age_ms = tick_capture_age_ms_;
   end = std::min(end, vehicles_.size());
   for (std::size_t i = first; i < end; ++i) {
     if (!vehicles_[i]) continue;
@@ -678,7 +677,7 @@ void Bridge::tick_vehicles(HostTime now, std::size_t first, std::size_t end, Bri
     setup_target.autopilot = target.autopilot;
     setup_target.compid = target.compid;
     setup_target.armed = heard.heartbeat && heard.heartbeat->armed;
-    DelayInputs delay = delay_inputs(capture_age_ms, heard);
+    DelayInputs delay = delay_inputs(tick_capture_age_ms_, heard);
     delay.dds_time_sync = !mavlink && v.capture_stamps;
     v.setup.on_tick(now, setup_target, delay, requests, notes);
     stream_events(i, notes, now, out, BridgeEventKind::vehicle_setup);
