@@ -1,6 +1,6 @@
 // Per-frame CPU cost of the bridge's core (issue 14: sizing a Raspberry Pi for N vehicles).
 //
-//   bridge_cost [--frames N] [--repetitions R] [--only-vehicles N --only-sending 0|1]
+//   bridge_cost [--frames N] [--repetitions R] [--only-vehicles N --only-sending 0|1 [--signing 0]]
 //   bridge_cost --tick N
 //
 // --tick N: the clock-driven side instead (issue 50): N vehicles sending, none of them heard, 300
@@ -9,7 +9,8 @@
 // (their sends are not in the figure).
 //
 // --only-*: one run of one case and no table, for an instruction count of Bridge::on_frame with
-// valgrind --tool=callgrind --toggle-collect='mocaplink::core::Bridge::on_frame*'.
+// valgrind --tool=callgrind --toggle-collect='mocaplink::core::Bridge::on_frame*'; --signing 0
+// leaves the vehicles unsigned, as bench/e2e's are.
 //
 // For N = 1, 4, 16 and 64 vehicles, each following its own rigid body in 240 Hz frames (every body
 // in every frame, slow circles): the thread CPU time of Bridge::on_frame per frame,
@@ -43,7 +44,7 @@ double thread_cpu_ns() {
   return static_cast<double>(ts.tv_sec) * 1e9 + static_cast<double>(ts.tv_nsec);
 }
 
-mc::BridgeConfig make_config(std::size_t vehicles, bool sending) {
+mc::BridgeConfig make_config(std::size_t vehicles, bool sending, bool signing = true) {
   mc::BridgeConfig config;
   config.origin = mc::GeodeticPosition{47.3977, 8.5456, 488.0};
   for (std::size_t i = 0; i < vehicles; ++i) {
@@ -53,7 +54,7 @@ mc::BridgeConfig make_config(std::size_t vehicles, bool sending) {
     v.system_id = static_cast<std::uint8_t>(i % 250 + 1);  // ids repeat beyond 250 vehicles
     v.rate_hz = kFrameRateHz;
     v.enabled = sending;
-    v.signing_key = std::array<std::uint8_t, 32>{};
+    if (signing) v.signing_key = std::array<std::uint8_t, 32>{};
     config.vehicles.push_back(v);
   }
   return config;
@@ -82,12 +83,12 @@ struct Result {
   double messages_per_frame = 0;
 };
 
-Result run(std::size_t vehicles, bool sending, std::uint64_t frames) {
+Result run(std::size_t vehicles, bool sending, std::uint64_t frames, bool signing = true) {
   // Frames are built before timing: the adapter's parsing is not part of this figure.
   std::vector<mc::MocapFrame> input;
   input.reserve(frames);
   for (std::uint64_t n = 0; n < frames; ++n) input.push_back(make_frame(vehicles, n));
-  auto made = mc::Bridge::make(make_config(vehicles, sending), mc::host_time_from_ns(0));
+  auto made = mc::Bridge::make(make_config(vehicles, sending, signing), mc::host_time_from_ns(0));
   auto& bridge = std::get<mc::Bridge>(made);
   // Host receive time = capture time + 2 ms; a warm-up second is not timed.
   const auto received = [](std::uint64_t n) {
@@ -144,21 +145,25 @@ int main(int argc, char** argv) {
   int repetitions = 7;
   long only_vehicles = 0;
   int only_sending = 1;
+  int signing = 1;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string_view arg = argv[i];
     if (arg == "--frames") frames = std::strtoull(argv[i + 1], nullptr, 10);
     if (arg == "--repetitions") repetitions = std::atoi(argv[i + 1]);
     if (arg == "--only-vehicles") only_vehicles = std::atol(argv[i + 1]);
     if (arg == "--only-sending") only_sending = std::atoi(argv[i + 1]);
+    if (arg == "--signing") signing = std::atoi(argv[i + 1]);
     if (arg == "--tick") {
       run_ticks(static_cast<std::size_t>(std::strtoul(argv[i + 1], nullptr, 10)));
       return 0;
     }
   }
   if (only_vehicles > 0) {
-    const Result r = run(static_cast<std::size_t>(only_vehicles), only_sending != 0, frames);
-    std::printf("%ld vehicles, %s: %.0f ns/frame, %.2f messages/frame\n", only_vehicles,
-                only_sending != 0 ? "sending" : "tracking", r.ns_per_frame, r.messages_per_frame);
+    const Result r =
+        run(static_cast<std::size_t>(only_vehicles), only_sending != 0, frames, signing != 0);
+    std::printf("%ld vehicles, %s%s: %.0f ns/frame, %.2f messages/frame\n", only_vehicles,
+                only_sending != 0 ? "sending" : "tracking", signing != 0 ? "" : ", unsigned",
+                r.ns_per_frame, r.messages_per_frame);
     return 0;
   }
   std::printf(
