@@ -333,6 +333,58 @@ TEST(SenderContent, ImplausibleStateIsNeverSent) {
   EXPECT_EQ(sender.snapshot(HostTime{}).counters.implausible, 3U);
 }
 
+// Every one of the 85 values the sender checks, each made NaN, +inf and -inf in turn, is refused;
+// the largest finite doubles in the covariances and the rates are sent (nothing is "infinite"
+// because it is big).
+TEST(SenderContent, EachNonFiniteValueIsImplausibleAndNoFiniteOne) {
+  Sender sender(config({MessageKind::odometry}, 100.0));
+  std::vector<OutgoingMessage> out;
+  const SendContext ctx;
+  std::int64_t ms = 0;
+  std::size_t expected_implausible = 0;
+  const auto send = [&](const auto& set) {
+    auto e = tracked_at(SourceTime{milliseconds(ms += 10)});
+    set(e);
+    out.clear();
+    sender.on_estimate(e, ctx, out);
+    return out.size();
+  };
+  const auto each_value = [](BodyEstimate& e, auto f) {
+    for (int i = 0; i < 3; ++i) f(e.p_ned_m[i]);
+    for (int i = 0; i < 3; ++i) f(e.v_ned_mps[i]);
+    for (int i = 0; i < 4; ++i) f(e.q_ned_frd.coeffs()[i]);
+    for (int i = 0; i < 3; ++i) f(e.w_frd_radps[i]);
+    for (int i = 0; i < 36; ++i) f(e.pose_covariance.data()[i]);
+    for (int i = 0; i < 36; ++i) f(e.velocity_covariance.data()[i]);
+  };
+  BodyEstimate probe;
+  std::size_t values = 0;
+  each_value(probe, [&](double&) { ++values; });
+  ASSERT_EQ(values, 85U);
+  const double bad[] = {std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
+  for (std::size_t k = 0; k < values; ++k) {
+    for (const double x : bad) {
+      EXPECT_EQ(send([&](BodyEstimate& e) {
+                  std::size_t n = 0;
+                  each_value(e, [&](double& v) { v = n++ == k ? x : v; });
+                }),
+                0U)
+          << "value " << k << " = " << x;
+      ++expected_implausible;
+    }
+  }
+  const double huge = std::numeric_limits<double>::max();
+  EXPECT_EQ(send([&](BodyEstimate& e) {
+              e.pose_covariance.setConstant(huge);
+              e.velocity_covariance.setConstant(-huge);
+              e.w_frd_radps.setConstant(huge);
+            }),
+            1U);
+  EXPECT_EQ(sender.snapshot(HostTime{}).counters.implausible, expected_implausible);
+}
+
 TEST(SenderContent, ClassicSendsThreeMessagesWithTimes) {
   const auto origin = LocalGeodeticFrame::make({47.0, 8.0, 400.0});
   ASSERT_TRUE(origin);
